@@ -30,6 +30,7 @@ __all__ = ["ContactCurves", "elastic_contact", "bearing_area", "bearing_area_rat
 MODELS = ("bgk", "gw")
 HERTZ = ("exact", "paper")
 METHODS = ("production", "reference")
+S_MAX_RATIO = 37.0  # ½ erfc(37/√2) ≈ 6e-300, the last s where A_B is a normal double
 
 
 def _units(length="L", stress="unit of E*"):
@@ -118,7 +119,7 @@ def _theta_nodes(surface: SpectralMoments, hertz: str, accuracy):
     """θ-nodes and the per-node weights (w_area, w_load, w_bearing, g) of docs/derivation.md."""
     settings = settings_for(accuracy)
     geom = PolarGeometry(surface)
-    breaks = [geom.theta_circle]
+    breaks = [geom.theta_circle, geom.theta_peak]
     for lam in ellipse.kinks(hertz):
         if lam < 1.0:
             breaks.extend(geom.theta_at_lambda(lam))
@@ -229,6 +230,13 @@ def bearing_area(surface: SpectralMoments, s, *, method="production", accuracy="
 
 
 def bearing_area_ratio(surface: SpectralMoments, s, *, method="production", accuracy="plot", dps=20):
-    """A_G/A_B vs s (Fig. 3): summit-model bearing area over the Gaussian one (25)."""
+    """A_G/A_B vs s (Fig. 3): summit-model bearing area over the Gaussian one (25).
+
+    Defined for s ≤ 37: beyond, A_B = ½ erfc(s/√2) underflows double precision."""
     s_arr = _check_separations(s)
+    if np.any(s_arr > S_MAX_RATIO):
+        raise ValueError(
+            f"A_G/A_B is not representable for s > {S_MAX_RATIO} (A_B underflows double "
+            f"precision); got s = {s_arr.max():g}"
+        )
     return bearing_area(surface, s_arr, method=method, accuracy=accuracy, dps=dps) / gaussian_bearing_area(s_arr)

@@ -36,6 +36,12 @@ class PolarGeometry:
     def theta_circle(self) -> float:
         return math.atan(math.sqrt(self.surface.m40 / self.surface.m04))
 
+    @property
+    def theta_peak(self) -> float:
+        """θ where g(θ) is largest (tan θ = √(β2/β1)): for large separations the integrand
+        concentrates there, in a peak of width ~1/l."""
+        return math.atan2(math.sqrt(self.surface.beta2), math.sqrt(self.surface.beta1))
+
     def theta_at_lambda(self, lam: float) -> tuple[float, float]:
         """The two θ in (0, π/2) where λ = min(ρ, 1/ρ)^{1/2} equals ``lam`` ∈ (0, 1]
         (ρ = lam² on the far side of θ*, ρ = 1/lam² on the near side)."""

@@ -69,9 +69,10 @@ class QuadratureSettings:
         return tuple(TanhSinh(lv).nodes_weights for lv in (self.theta_level, self.r_level, self.t_level))
 
 
-#: Named accuracy presets (levels of the θ, r, t rules). Measured against level (6, 6, 6)
-#: for s ∈ [−1, 7] on the Table 1 and Table 2 surfaces (benchmarks/, tests/test_contact.py):
-#: "table" ≤ 4e-15 relative (~30 ms per separation on one core); "plot" ≤ 1e-7 (~10 ms).
+#: Named accuracy presets (levels of the θ, r, t rules). Measured against levels (5, 5, 5)
+#: and (6, 6, 6) for s ∈ [−1, 30] on the Table 1 and Table 2 surfaces (tests/test_contact.py):
+#: "table" ≤ 1e-14 relative (~30 ms per separation on one core); "plot" ≤ 3e-6 (≤ 1e-7 for
+#: s ≤ 7; ~10 ms).
 PRESETS: dict[str, QuadratureSettings] = {
     "table": QuadratureSettings(theta_level=4, r_level=4, t_level=4),
     "plot": QuadratureSettings(theta_level=3, r_level=4, t_level=3),

@@ -1,0 +1,215 @@
+"""The command-line interface (roughcontact.cli): output, units, and one-line input errors."""
+
+from __future__ import annotations
+
+import json
+import math
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from roughcontact import __version__, cli
+
+# The paper's Table 1 surface (lengths in µm).
+M = dict(m00=0.0625, m20=8e-5, m02=8e-4, m40=1.04e-6, m04=1.04e-4)
+MOMENT_ARGS = [a for k, v in M.items() for a in (f"--{k}", repr(v))]
+E_STAR = "1.14e5"
+
+
+def run(capsys, *argv):
+    code = cli.main(list(argv))
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def run_json(capsys, *argv):
+    code, out, err = run(capsys, *argv, "--json")
+    assert code == 0, err
+    assert err == ""
+    # strict JSON: no NaN/Infinity tokens
+    return json.loads(out, parse_constant=lambda tok: pytest.fail(f"non-strict token {tok}"))
+
+
+# ---------------------------------------------------------------------------------------
+# surface
+# ---------------------------------------------------------------------------------------
+def test_surface_json_matches_closed_forms(capsys):
+    d = run_json(capsys, "surface", *MOMENT_ARGS)
+    m00, m20, m02, m40, m04 = (M[k] for k in ("m00", "m20", "m02", "m40", "m04"))
+    b1, b2 = m20**2 / (m00 * m40), m02**2 / (m00 * m04)
+    expected = {
+        "alpha1": m00 * m40 / m20**2,
+        "alpha2": m00 * m04 / m02**2,
+        "mu": 1 - m20**2 / (m00 * m40) - m02**2 / (m00 * m04),
+        "summit_density": (2 * math.pi) ** -2 * math.sqrt(m40 * m04 / (m20 * m02)),
+        "mean_summit_curvature": math.sqrt(math.pi / 8) * (math.sqrt(m40) + math.sqrt(m04)),
+        "summit_height_std": math.sqrt(m00 * (1 - (math.pi / 2 - 1) * (b1 + b2))),
+        "summit_mean_height": math.sqrt(math.pi * m00 / 2) * (math.sqrt(b1) + math.sqrt(b2)),
+    }
+    for key, value in expected.items():
+        assert d[key] == pytest.approx(value, rel=1e-14), key
+    assert d["alpha1"] == pytest.approx(10.15625, rel=1e-14)  # the paper's α = 10.16
+    units = d["units"]
+    assert units["summit_density"] == "1/L^2"
+    assert units["mean_summit_curvature"] == "1/L"
+    assert units["summit_height_std"] == units["summit_mean_height"] == "L"
+    assert units["mu"] == units["alpha1"] == "1"
+    assert set(expected) <= set(units)
+
+
+def test_surface_text_is_aligned_listing(capsys):
+    code, out, err = run(capsys, "surface", *MOMENT_ARGS)
+    assert code == 0 and err == ""
+    lines = out.splitlines()
+    names = [line.split()[0] for line in lines]
+    assert {"alpha1", "mu", "summit_density", "summit_mean_height"} <= set(names)
+    # values right-aligned in one column, followed by the unit: the unit starts at one column
+    assert len({len(line) - len(line.split()[-1]) for line in lines}) == 1
+    assert any(line.endswith("1/L^2") for line in lines if line.startswith("summit_density"))
+
+
+# ---------------------------------------------------------------------------------------
+# elastic
+# ---------------------------------------------------------------------------------------
+def test_elastic_gw_reproduces_table1(capsys):
+    d = run_json(capsys, "elastic", *MOMENT_ARGS, "--E-star", E_STAR, "--s", "1.0", "--model", "gw")
+    # Table 1, GW column at s = 1.0 (5 significant digits printed)
+    assert d["area_fraction"][0] == pytest.approx(0.051497, rel=1e-4)
+    assert d["pressure"][0] == pytest.approx(86.5534, rel=1e-4)
+    assert d["model"] == "gw" and d["hertz"] is None and d["method"] == "production"
+
+
+def test_elastic_bgk_json_shape_and_monotone(capsys):
+    s = ["0.5", "1.0", "1.5", "2.0"]
+    d = run_json(capsys, "elastic", *MOMENT_ARGS, "--E-star", E_STAR, "--s", *s, "--accuracy", "plot")
+    for key in ("s", "area_fraction", "pressure", "stiffness", "units", "model", "hertz", "method"):
+        assert key in d, key
+    assert d["s"] == [float(x) for x in s]
+    assert len(d["area_fraction"]) == len(d["pressure"]) == len(d["stiffness"]) == len(s)
+    assert (d["model"], d["hertz"], d["method"]) == ("bgk", "exact", "production")
+    for key in ("area_fraction", "pressure", "stiffness"):
+        v = d[key]
+        assert all(x > 0 for x in v)
+        assert all(a > b for a, b in zip(v, v[1:])), key
+    assert all(0 < a < 1 for a in d["area_fraction"])  # a fraction, not a percentage
+    assert set(d["units"]) >= {"s", "area_fraction", "pressure", "stiffness"}
+    assert "E*" in d["units"]["pressure"] and "L" in d["units"]["stiffness"]
+
+
+def test_elastic_pressure_scales_with_E_star(capsys):
+    a = run_json(capsys, "elastic", *MOMENT_ARGS, "--E-star", "1", "--s", "1", "--model", "gw")
+    b = run_json(capsys, "elastic", *MOMENT_ARGS, "--E-star", "2", "--s", "1", "--model", "gw")
+    assert b["pressure"][0] == pytest.approx(2 * a["pressure"][0], rel=1e-14)
+    assert b["area_fraction"] == a["area_fraction"]
+
+
+def test_elastic_text_table(capsys):
+    code, out, err = run(capsys, "elastic", *MOMENT_ARGS, "--E-star", E_STAR, "--s", "1", "2",
+                         "--model", "gw", "--hertz", "paper")
+    assert code == 0 and err == ""
+    lines = out.splitlines()
+    assert "model=gw" in lines[0]
+    assert lines[1].split() == ["s", "area_fraction", "pressure", "stiffness"]
+    rows = [list(map(float, line.split())) for line in lines[3:]]
+    assert [r[0] for r in rows] == [1.0, 2.0]
+    assert rows[0][1] == pytest.approx(0.051497, rel=1e-4)
+
+
+def test_choices_match_library():
+    from roughcontact import contact, quadrature
+
+    assert cli.MODELS == contact.MODELS
+    assert cli.HERTZ == contact.HERTZ
+    assert cli.METHODS == contact.METHODS
+    assert set(cli.ACCURACIES) == set(quadrature.PRESETS)
+
+
+def test_version(capsys):
+    code, out, err = run(capsys, "--version")
+    assert code == 0
+    assert out.strip() == f"roughcontact {__version__}"
+
+
+def test_nonfinite_result_is_exit_1(capsys, monkeypatch):
+    monkeypatch.setattr(cli, "_run_surface", lambda args: {"mu": float("nan"), "units": {}})
+    code, out, err = run(capsys, "surface", *MOMENT_ARGS, "--json")
+    assert code == 1 and out == ""
+    assert err.startswith("roughcontact: error:") and "mu" in err and len(err.splitlines()) == 1
+
+
+# ---------------------------------------------------------------------------------------
+# bad input: exit 2, exactly one stderr line, no traceback
+# ---------------------------------------------------------------------------------------
+def _moments(**override):
+    m = {**{k: repr(v) for k, v in M.items()}, **override}
+    return [a for k, v in m.items() for a in (f"--{k}", v)]
+
+
+ELASTIC = ["--E-star", E_STAR, "--s", "1"]
+BAD = {
+    "non-numeric moment": ["surface", *_moments(m00="abc")],
+    "negative moment": ["surface", *_moments(m20="-8e-5")],
+    "zero moment": ["surface", *_moments(m40="0")],
+    "infinite moment": ["surface", *_moments(m04="inf")],
+    "mu <= 0": ["surface", *_moments(m04="1e-5")],
+    "missing moment": ["surface", *_moments()[2:]],
+    "no command": [],
+    "unknown command": ["plastic", *_moments()],
+    "unknown option": ["surface", *_moments(), "--frobnicate"],
+    "non-finite s": ["elastic", *_moments(), "--E-star", E_STAR, "--s", "nan"],
+    "infinite s": ["elastic", *_moments(), "--E-star", E_STAR, "--s", "1", "1e999"],
+    "non-numeric s": ["elastic", *_moments(), "--E-star", E_STAR, "--s", "one"],
+    "missing s": ["elastic", *_moments(), "--E-star", E_STAR],
+    "zero E*": ["elastic", *_moments(), "--E-star", "0", "--s", "1"],
+    "negative E*": ["elastic", *_moments(), "--E-star", "-2", "--s", "1"],
+    "non-numeric E*": ["elastic", *_moments(), "--E-star", "steel", "--s", "1"],
+    "unknown model": ["elastic", *_moments(), *ELASTIC, "--model", "jkr"],
+    "unknown hertz": ["elastic", *_moments(), *ELASTIC, "--hertz", "approx"],
+    "unknown method": ["elastic", *_moments(), *ELASTIC, "--method", "fast"],
+    "unknown accuracy": ["elastic", *_moments(), *ELASTIC, "--accuracy", "best"],
+    "elastic mu <= 0": ["elastic", *_moments(m40="1e-7"), *ELASTIC],
+}
+
+
+@pytest.mark.parametrize("argv", BAD.values(), ids=BAD.keys())
+def test_bad_input_exit_2_one_line(capsys, argv):
+    code, out, err = run(capsys, *argv)
+    assert code == 2
+    assert out == ""
+    assert len(err.splitlines()) == 1, err
+    assert err.startswith("roughcontact: error: ")
+    assert "Traceback" not in err and "usage:" not in err
+
+
+def test_library_messages_pass_through(capsys):
+    _, _, err = run(capsys, "surface", *_moments(m04="1e-5"))
+    assert "mu = 1 - 1/alpha1 - 1/alpha2 > 0" in err
+    _, _, err = run(capsys, "elastic", *_moments(), "--E-star", "0", "--s", "1")
+    assert "E_star must be finite and positive" in err
+
+
+# ---------------------------------------------------------------------------------------
+# the installed console script
+# ---------------------------------------------------------------------------------------
+def _script() -> str:
+    local = Path(sys.executable).parent / "roughcontact"
+    found = str(local) if local.exists() else shutil.which("roughcontact")
+    if found is None:
+        pytest.skip("console script 'roughcontact' not installed (pip install -e .)")
+    return found
+
+
+def test_console_script():
+    exe = _script()
+    ok = subprocess.run([exe, "surface", *MOMENT_ARGS, "--json"], capture_output=True, text=True,
+                        timeout=120)
+    assert ok.returncode == 0, ok.stderr
+    assert json.loads(ok.stdout)["alpha1"] == pytest.approx(10.15625, rel=1e-14)
+
+    bad = subprocess.run([exe, "surface", *_moments(m00="-1")], capture_output=True, text=True,
+                         timeout=120)
+    assert bad.returncode == 2 and bad.stdout == ""
+    assert bad.stderr.splitlines() == ["roughcontact: error: m00 must be positive, got -1.0"]
