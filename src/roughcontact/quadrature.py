@@ -110,17 +110,21 @@ def _t_window(a):
 
 
 @numba.njit(cache=True)
-def _normal_moments_on(lo, hi, a, y_t, w_t, acc):
-    """Add the tanh-sinh sums of t^ν φ(t − a) over [lo, hi] to acc (ν = 1/2, 1, 3/2)."""
+def _normal_moments_on(lo, hi, a, y_t, w_t):
+    """Tanh-sinh sums of t^ν φ(t − a) over [lo, hi] for ν = 1/2, 1, 3/2."""
     width = hi - lo
+    j_half = 0.0
+    j_one = 0.0
+    j_three_half = 0.0
     for k in range(y_t.shape[0]):
         t = lo + width * y_t[k]
         d = t - a
         wphi = width * w_t[k] * _INV_SQRT_2PI * math.exp(-0.5 * d * d)
         sq = math.sqrt(t)
-        acc[0] += wphi * sq
-        acc[1] += wphi * t
-        acc[2] += wphi * t * sq
+        j_half += wphi * sq
+        j_one += wphi * t
+        j_three_half += wphi * t * sq
+    return j_half, j_one, j_three_half
 
 
 @numba.njit(cache=True)
@@ -129,16 +133,14 @@ def _normal_moments(a, y_t, w_t):
 
     For a > 0 the window is split at the peak t = a so that neither piece holds an
     interior bump (tanh-sinh spends its nodes near the ends of an interval)."""
-    acc = np.zeros(3)
     if a < _A_UNDERFLOW:  # J_ν(a) < φ(a) underflows: exactly zero
         return 0.0, 0.0, 0.0
     lo, hi = _t_window(a)
     if a > lo:
-        _normal_moments_on(lo, a, a, y_t, w_t, acc)
-        _normal_moments_on(a, hi, a, y_t, w_t, acc)
-    else:
-        _normal_moments_on(lo, hi, a, y_t, w_t, acc)
-    return acc[0], acc[1], acc[2]
+        h1, o1, t1 = _normal_moments_on(lo, a, a, y_t, w_t)
+        h2, o2, t2 = _normal_moments_on(a, hi, a, y_t, w_t)
+        return h1 + h2, o1 + o2, t1 + t2
+    return _normal_moments_on(lo, hi, a, y_t, w_t)
 
 
 @numba.njit(cache=True)
@@ -162,17 +164,21 @@ def _r_window(g, l):
 
 
 @numba.njit(cache=True)
-def _r_sums(lo, hi, g, l, y_r, w_r, y_t, w_t, acc):
-    """Add ∫_lo^hi r² e^{−r²/2} (J_1, r^{1/2} J_{3/2}, r^{1/2} J_{1/2})(r g − l) dr to acc."""
+def _r_sums(lo, hi, g, l, y_r, w_r, y_t, w_t):
+    """∫_lo^hi r² e^{−r²/2} (J_1, r^{1/2} J_{3/2}, r^{1/2} J_{1/2})(r g − l) dr."""
     width = hi - lo
+    acc_a = 0.0
+    acc_w = 0.0
+    acc_k = 0.0
     for k in range(y_r.shape[0]):
         r = lo + width * y_r[k]
         j_half, j_one, j_three_half = _normal_moments(r * g - l, y_t, w_t)
         base = width * w_r[k] * r * r * math.exp(-0.5 * r * r)
         sr = math.sqrt(r)
-        acc[0] += base * j_one
-        acc[1] += base * sr * j_three_half
-        acc[2] += base * sr * j_half
+        acc_a += base * j_one
+        acc_w += base * sr * j_three_half
+        acc_k += base * sr * j_half
+    return acc_a, acc_w, acc_k
 
 
 @numba.njit(cache=True, parallel=True)
@@ -191,18 +197,17 @@ def _polar_elastic_kernel(l_values, w_area, w_load, g, y_r, w_r, y_t, w_t, out):
         area = 0.0
         load = 0.0
         stiff = 0.0
-        acc = np.zeros(3)
         for j in range(g.shape[0]):
             lo, peak, hi = _r_window(g[j], l)
-            acc[:] = 0.0
             if peak > lo:
-                _r_sums(lo, peak, g[j], l, y_r, w_r, y_t, w_t, acc)
-                _r_sums(peak, hi, g[j], l, y_r, w_r, y_t, w_t, acc)
+                a1, w1, k1 = _r_sums(lo, peak, g[j], l, y_r, w_r, y_t, w_t)
+                a2, w2, k2 = _r_sums(peak, hi, g[j], l, y_r, w_r, y_t, w_t)
+                acc_a, acc_w, acc_k = a1 + a2, w1 + w2, k1 + k2
             else:
-                _r_sums(lo, hi, g[j], l, y_r, w_r, y_t, w_t, acc)
-            area += w_area[j] * acc[0]
-            load += w_load[j] * acc[1]
-            stiff += w_load[j] * acc[2]
+                acc_a, acc_w, acc_k = _r_sums(lo, hi, g[j], l, y_r, w_r, y_t, w_t)
+            area += w_area[j] * acc_a
+            load += w_load[j] * acc_w
+            stiff += w_load[j] * acc_k
         out[i, 0] = area
         out[i, 1] = load
         out[i, 2] = stiff
