@@ -213,3 +213,74 @@ def test_console_script():
                          timeout=120)
     assert bad.returncode == 2 and bad.stdout == ""
     assert bad.stderr.splitlines() == ["roughcontact: error: m00 must be positive, got -1.0"]
+
+
+# ---------------------------------------------------------------------------------------
+# mindlin (k_N/k_T, corrected eq. (96); Table 3)
+# ---------------------------------------------------------------------------------------
+def _table3_rows():
+    import yaml
+
+    data = yaml.safe_load((Path(__file__).parent / "data" / "table3.yaml").read_text())
+    # reading of the first column: "10.E-03" -> B^2/A^2 = 1e-3 (see tests/test_tangential.py)
+    return [(10.0 ** int(row[0].split("E")[1]), row[1:]) for row in data["rows"]]
+
+
+@pytest.mark.parametrize("nu,col", [("0", 0), ("0.25", 1), ("0.5", 2)])
+def test_mindlin_json_reproduces_table3(capsys, nu, col):
+    rows = _table3_rows()
+    d = run_json(capsys, "mindlin", "--b2-over-a2", *(repr(r) for r, _ in rows), "--nu", nu)
+    assert set(d) >= {"b2_over_a2", "kn_over_kt"}
+    assert d["b2_over_a2"] == [r for r, _ in rows]
+    assert len(d["kn_over_kt"]) == len(rows)
+    for value, (r, printed) in zip(d["kn_over_kt"], rows):
+        assert value == pytest.approx(float(printed[col]), rel=1e-5), r
+
+
+def test_mindlin_circle_closed_form(capsys):
+    d = run_json(capsys, "mindlin", "--b2-over-a2", "1", "--nu", "0.3")
+    assert d["kn_over_kt"] == [pytest.approx((2 - 0.3) / (2 * (1 - 0.3)), rel=1e-15)]
+
+
+def test_mindlin_text_table(capsys):
+    code, out, err = run(capsys, "mindlin", "--b2-over-a2", "0.001", "1000", "--nu", "0.25")
+    assert code == 0 and err == ""
+    lines = out.splitlines()
+    assert "nu=0.25" in lines[0]
+    assert lines[1].split() == ["b2_over_a2", "kn_over_kt"]
+    rows = [list(map(float, line.split())) for line in lines[2:]]
+    assert [r[0] for r in rows] == [0.001, 1000.0]
+    assert rows[0][1] == pytest.approx(1.06874, rel=1e-5)  # Table 3
+    assert rows[1][1] == pytest.approx(1.26459, rel=1e-5)
+
+
+MINDLIN_BAD = {
+    "zero ratio": ["mindlin", "--b2-over-a2", "0", "--nu", "0.25"],
+    "negative ratio": ["mindlin", "--b2-over-a2", "1", "-1", "--nu", "0.25"],
+    "nan ratio": ["mindlin", "--b2-over-a2", "nan", "--nu", "0.25"],
+    "infinite ratio": ["mindlin", "--b2-over-a2", "1e999", "--nu", "0.25"],
+    "non-numeric ratio": ["mindlin", "--b2-over-a2", "round", "--nu", "0.25"],
+    "missing ratio": ["mindlin", "--nu", "0.25"],
+    "missing nu": ["mindlin", "--b2-over-a2", "1"],
+    "nu above 0.5": ["mindlin", "--b2-over-a2", "1", "--nu", "0.7"],
+    "nu -1": ["mindlin", "--b2-over-a2", "1", "--nu", "-1"],
+    "nan nu": ["mindlin", "--b2-over-a2", "1", "--nu", "nan"],
+    "moments not accepted": ["mindlin", "--b2-over-a2", "1", "--nu", "0.25", "--m00", "1"],
+}
+
+
+@pytest.mark.parametrize("argv", MINDLIN_BAD.values(), ids=MINDLIN_BAD.keys())
+def test_mindlin_bad_input_exit_2_one_line(capsys, argv):
+    code, out, err = run(capsys, *argv)
+    assert code == 2
+    assert out == ""
+    assert len(err.splitlines()) == 1, err
+    assert err.startswith("roughcontact: error: ")
+    assert "Traceback" not in err and "usage:" not in err
+
+
+def test_mindlin_library_messages_pass_through(capsys):
+    _, _, err = run(capsys, "mindlin", "--b2-over-a2", "0", "--nu", "0.25")
+    assert "b2_over_a2 = B^2/A^2 must be finite and > 0" in err
+    _, _, err = run(capsys, "mindlin", "--b2-over-a2", "1", "--nu", "0.6")
+    assert "-1 < nu <= 0.5" in err

@@ -7,6 +7,7 @@ A thin layer: parse and validate the arguments, call the library, print the resu
     roughcontact elastic --m00 M ... --m04 M --E-star E --s S [S ...]
                          [--model bgk|gw] [--hertz exact|paper]
                          [--method production|reference] [--accuracy table|plot] [--json]
+    roughcontact mindlin --b2-over-a2 R [R ...] --nu NU [--json]
 
 Exit codes: 0 success; 2 bad input (one line on stderr, "roughcontact: error: ...");
 1 a computed value is not finite. Any other exception is a bug and propagates (traceback).
@@ -128,6 +129,7 @@ def build_parser() -> argparse.ArgumentParser:
     parents = [_moments_parent(), _output_parent()]
     _add_surface(sub, parents)
     _add_elastic(sub, parents)
+    _add_mindlin(sub, [_output_parent()])
     return parser
 
 
@@ -168,6 +170,26 @@ def _add_elastic(sub, parents) -> None:
     p.set_defaults(func=_run_elastic, render=_render_elastic)
 
 
+def _add_mindlin(sub, parents) -> None:
+    p = sub.add_parser(
+        "mindlin",
+        parents=parents,
+        help="Mindlin's normal/tangential stiffness ratio k_N/k_T of an elliptical contact",
+        description="k_N/k_T of two bodies with the same elastic constants for a contact "
+        "ellipse with semi-axis B along the tangential force and A across it (corrected "
+        "eq. (96) of the paper; Table 3). Needs no surface moments.",
+    )
+    p.add_argument(
+        "--b2-over-a2", dest="b2_over_a2", type=_real, nargs="+", required=True, metavar="R",
+        help="B^2/A^2 > 0 (B: semi-axis along the tangential force); Table 3 uses 1e-3 ... 1e3",
+    )
+    p.add_argument(
+        "--nu", type=_real, required=True, metavar="NU",
+        help="Poisson's ratio of both bodies, -1 < nu <= 0.5",
+    )
+    p.set_defaults(func=_run_mindlin, render=_render_mindlin)
+
+
 # ---------------------------------------------------------------------------------------
 # handlers: args -> payload (plain JSON-able dict)
 # ---------------------------------------------------------------------------------------
@@ -201,6 +223,17 @@ def _run_elastic(args) -> dict[str, Any]:
         "accuracy": args.accuracy if curves.method == "production" else None,
         "E_star": curves.E_star,
         "moments": surface.as_dict(),
+    }
+
+
+def _run_mindlin(args) -> dict[str, Any]:
+    from .tangential import kn_over_kt
+
+    ratio = kn_over_kt([float(r) for r in args.b2_over_a2], args.nu)
+    return {
+        "b2_over_a2": [float(r) for r in args.b2_over_a2],
+        "kn_over_kt": [float(x) for x in ratio],
+        "nu": float(args.nu),
     }
 
 
@@ -242,6 +275,17 @@ def _render_elastic(payload: dict[str, Any]) -> str:
     ]
     for row in zip(*(payload[c] for c in cols)):
         lines.append("".join(f"{v:>{w}.8g}" for v in row))
+    return "\n".join(lines)
+
+
+def _render_mindlin(payload: dict[str, Any]) -> str:
+    w = 16
+    lines = [
+        f"nu={payload['nu']:.8g}",
+        "".join(f"{c:>{w}}" for c in ("b2_over_a2", "kn_over_kt")),
+    ]
+    for r, k in zip(payload["b2_over_a2"], payload["kn_over_kt"]):
+        lines.append(f"{r:>{w}.8g}{k:>{w}.10g}")
     return "\n".join(lines)
 
 
