@@ -1,0 +1,61 @@
+# roughcontact — one entry point for a fresh machine with Python 3.11 and pip.
+#
+#   make reproduce   create .venv (if missing), install, run the whole Snakemake workflow
+#   make test        create .venv (if missing), install, run the whole test suite
+#
+# Other targets: test-fast (skip the mpmath-marked tests), verify (verification report and
+# verdict gate only), dry-run, ci (.ci/run), clean (generated results), distclean (+ .venv).
+
+SHELL := /bin/bash
+.DEFAULT_GOAL := help
+
+VENV   ?= .venv
+BIN    := $(VENV)/bin
+PY     := $(BIN)/python
+# Python 3.11 if present, else python3 (checked to be >= 3.11 below).
+PYTHON ?= $(shell command -v python3.11 2>/dev/null || command -v python3 2>/dev/null)
+CORES  ?= all
+SNAKEMAKE := $(BIN)/snakemake --workflow-profile workflow/profiles/default --cores $(CORES)
+# Re-install only when the package metadata changes (the install is editable: source edits
+# need no re-install).
+STAMP  := $(VENV)/.installed
+
+.PHONY: help venv reproduce test test-fast verify dry-run ci clean distclean
+
+help:
+	@sed -n '3,9p' Makefile
+
+$(PY):
+	@test -n "$(PYTHON)" || { echo "error: python3.11 (or python3 >= 3.11) not found" >&2; exit 1; }
+	@$(PYTHON) -c 'import sys; sys.exit(0 if sys.version_info >= (3, 11) else "error: Python >= 3.11 needed, found " + sys.version.split()[0])'
+	$(PYTHON) -m venv $(VENV)
+
+$(STAMP): pyproject.toml | $(PY)
+	$(PY) -m pip install --quiet --editable '.[test]'
+	@touch $@
+
+venv: $(STAMP)
+
+reproduce: $(STAMP)
+	$(SNAKEMAKE) all
+
+test: $(STAMP)
+	$(PY) -m pytest
+
+test-fast: $(STAMP)
+	$(PY) -m pytest -m "not mpmath"
+
+verify: $(STAMP)
+	$(SNAKEMAKE) verify
+
+dry-run: $(STAMP)
+	$(BIN)/snakemake -n all
+
+ci:
+	bash .ci/run
+
+clean:
+	rm -rf results paper_figures logs .snakemake
+
+distclean: clean
+	rm -rf $(VENV) src/*.egg-info

@@ -1,0 +1,285 @@
+"""Reading and writing results: xarray → netCDF with units and provenance, atomic writes, logs.
+
+Every netCDF file the workflow writes carries in its global attributes
+
+* ``roughcontact_version`` — the installed package version,
+* ``git_commit`` — the commit of the source tree (``"unknown"`` outside a git checkout or
+  before the first commit) and ``git_dirty`` (``"true"``/``"false"``/``"unknown"``),
+* ``config_json`` / ``config_sha256`` — the configuration that produced it (canonical JSON),
+* ``settings_json`` — the creation settings (method, accuracy preset, dps, ...),
+* library versions (python, numpy, scipy, mpmath, numba, xarray) and ``created_utc``.
+
+The data are deterministic; only ``created_utc`` (and the commit) change between two runs
+of the same configuration. Files are written to a temporary name and renamed into place, so
+a job killed midway never leaves a half-written result for Snakemake to trust.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import datetime as _dt
+import hashlib
+import json
+import logging
+import math
+import os
+import platform
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+from typing import Any, Iterator, Mapping
+
+__all__ = [
+    "git_commit",
+    "git_dirty",
+    "canonical_json",
+    "config_sha256",
+    "provenance_attrs",
+    "write_netcdf",
+    "read_netcdf",
+    "read_provenance",
+    "write_text",
+    "log_to",
+]
+
+_LIBRARIES = ("numpy", "scipy", "mpmath", "numba", "xarray", "netCDF4")
+
+
+def _git(args: list[str], cwd: str | os.PathLike | None) -> str | None:
+    try:
+        out = subprocess.run(
+            ["git", *args],
+            cwd=cwd,
+            capture_output=True,
+            text=True,
+            timeout=10,
+            check=True,
+        )
+    except (OSError, subprocess.SubprocessError):
+        return None
+    return out.stdout.strip()
+
+
+def _source_dir() -> Path:
+    return Path(__file__).resolve().parent
+
+
+def git_commit(cwd: str | os.PathLike | None = None) -> str:
+    """The full commit hash of the checkout containing ``cwd`` (default: this package's
+    source), or ``"unknown"`` (no git, not a repository, no commit yet)."""
+    sha = _git(["rev-parse", "--verify", "--quiet", "HEAD"], cwd or _source_dir())
+    return sha if sha else "unknown"
+
+
+def git_dirty(cwd: str | os.PathLike | None = None) -> str:
+    """``"true"`` if tracked files differ from HEAD, ``"false"`` if clean, else ``"unknown"``."""
+    if git_commit(cwd) == "unknown":
+        return "unknown"
+    status = _git(["status", "--porcelain", "--untracked-files=no"], cwd or _source_dir())
+    if status is None:
+        return "unknown"
+    return "true" if status else "false"
+
+
+def _jsonable(obj: Any) -> Any:
+    """Plain JSON types for config objects (Snakemake's Namedlist/OrderedDict, numpy scalars)."""
+    if isinstance(obj, Mapping):
+        return {str(k): _jsonable(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [_jsonable(v) for v in obj]
+    if isinstance(obj, (str, bool)) or obj is None:
+        return obj
+    if isinstance(obj, int):
+        return int(obj)
+    if isinstance(obj, float):
+        return obj if math.isfinite(obj) else str(obj)
+    try:  # numpy scalars and arrays
+        import numpy as np
+
+        if isinstance(obj, np.generic):
+            return _jsonable(obj.item())
+        if isinstance(obj, np.ndarray):
+            return _jsonable(obj.tolist())
+    except ImportError:  # pragma: no cover
+        pass
+    return str(obj)
+
+
+def canonical_json(obj: Any) -> str:
+    """Deterministic JSON (sorted keys, no whitespace) of a config-like object."""
+    return json.dumps(_jsonable(obj), sort_keys=True, separators=(",", ":"), ensure_ascii=False)
+
+
+def config_sha256(obj: Any) -> str:
+    """SHA-256 of :func:`canonical_json` — equal configs give equal hashes."""
+    return hashlib.sha256(canonical_json(obj).encode("utf-8")).hexdigest()
+
+
+def _library_versions() -> dict[str, str]:
+    from importlib.metadata import PackageNotFoundError, version
+
+    out = {"python": platform.python_version()}
+    for name in _LIBRARIES:
+        try:
+            out[name] = version(name)
+        except PackageNotFoundError:
+            out[name] = "not installed"
+    return out
+
+
+def provenance_attrs(
+    config: Any = None,
+    settings: Mapping[str, Any] | None = None,
+    *,
+    timestamp: bool = True,
+) -> dict[str, str]:
+    """Global attributes recording what produced a result (all values are strings, as netCDF
+    attributes must be plain)."""
+    from . import __version__
+
+    attrs = {
+        "roughcontact_version": str(__version__),
+        "git_commit": git_commit(),
+        "git_dirty": git_dirty(),
+        "config_json": canonical_json(config if config is not None else {}),
+        "config_sha256": config_sha256(config if config is not None else {}),
+        "settings_json": canonical_json(settings if settings is not None else {}),
+        "software_versions": canonical_json(_library_versions()),
+        "source": "roughcontact (Buczkowski & Kleiber 2009 reproduction)",
+        "Conventions": "CF-1.8",
+    }
+    if timestamp:
+        attrs["created_utc"] = _dt.datetime.now(_dt.timezone.utc).replace(microsecond=0).isoformat()
+    return attrs
+
+
+def _netcdf_attr(value: Any):
+    """netCDF attributes take strings and numbers: encode the rest as JSON / text."""
+    if isinstance(value, bool) or value is None:
+        return str(value).lower() if isinstance(value, bool) else "none"
+    if isinstance(value, (str, int, float)):
+        return value
+    if isinstance(value, (Mapping, list, tuple)):
+        return canonical_json(value)
+    return str(value)
+
+
+def _atomic_target(path: Path):
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".part", dir=path.parent)
+    os.close(fd)
+    return Path(tmp)
+
+
+def write_netcdf(
+    ds,
+    path: str | os.PathLike,
+    *,
+    config: Any = None,
+    settings: Mapping[str, Any] | None = None,
+    timestamp: bool = True,
+) -> Path:
+    """Write an ``xarray.Dataset`` to ``path`` (netCDF4) with provenance attributes.
+
+    Existing dataset attributes are kept (provenance keys win); attribute values that netCDF
+    cannot hold (dicts, lists, booleans, None) are stored as JSON/text. Variables without a
+    ``units`` attribute are refused: every stored quantity must say its unit.
+    """
+    path = Path(path)
+    missing = [name for name in list(ds.data_vars) + list(ds.coords) if "units" not in ds[name].attrs]
+    if missing:
+        raise ValueError(f"variables without a 'units' attribute: {', '.join(map(str, missing))}")
+    out = ds.copy()
+    attrs = {k: _netcdf_attr(v) for k, v in ds.attrs.items()}
+    attrs.update(provenance_attrs(config, settings, timestamp=timestamp))
+    out.attrs = attrs
+    for name in list(out.data_vars) + list(out.coords):
+        out[name].attrs = {k: _netcdf_attr(v) for k, v in out[name].attrs.items()}
+    tmp = _atomic_target(path)
+    try:
+        out.to_netcdf(tmp, engine="netcdf4", format="NETCDF4")
+        os.replace(tmp, path)
+    finally:
+        if tmp.exists():
+            tmp.unlink()
+    return path
+
+
+def read_netcdf(path: str | os.PathLike):
+    """Load a netCDF file fully into memory and close it (no file handle left open)."""
+    import xarray as xr
+
+    with xr.open_dataset(path, engine="netcdf4") as ds:
+        return ds.load()
+
+
+def read_provenance(ds) -> dict[str, Any]:
+    """The provenance attributes of a dataset, with the JSON ones decoded."""
+    out: dict[str, Any] = {}
+    for key in (
+        "roughcontact_version",
+        "git_commit",
+        "git_dirty",
+        "config_sha256",
+        "created_utc",
+    ):
+        if key in ds.attrs:
+            out[key] = ds.attrs[key]
+    for key in ("config_json", "settings_json", "software_versions"):
+        if key in ds.attrs:
+            out[key.removesuffix("_json")] = json.loads(ds.attrs[key])
+    return out
+
+
+def write_text(path: str | os.PathLike, text: str) -> Path:
+    """Write ``text`` to ``path`` atomically (temporary file + rename), creating parents."""
+    path = Path(path)
+    tmp = _atomic_target(path)
+    try:
+        tmp.write_text(text, encoding="utf-8")
+        os.replace(tmp, path)
+    finally:
+        if tmp.exists():
+            tmp.unlink()
+    return path
+
+
+@contextlib.contextmanager
+def log_to(path: str | os.PathLike | None, level: int = logging.INFO) -> Iterator[logging.Logger]:
+    """Send ``print`` output, warnings and ``logging`` records to ``path`` for the duration
+    (a Snakemake rule's ``log:``); exceptions are logged with their traceback and re-raised.
+    ``path=None`` logs to stderr."""
+    logger = logging.getLogger("roughcontact.workflow")
+    if path is None:
+        handler: logging.Handler = logging.StreamHandler(sys.stderr)
+        stream = None
+    else:
+        p = Path(path)
+        p.parent.mkdir(parents=True, exist_ok=True)
+        stream = open(p, "w", encoding="utf-8")
+        handler = logging.StreamHandler(stream)
+    handler.setFormatter(logging.Formatter("%(asctime)s %(levelname)s %(message)s"))
+    root = logging.getLogger()
+    old_level = root.level
+    root.addHandler(handler)
+    root.setLevel(level)
+    logging.captureWarnings(True)
+    redirect = contextlib.ExitStack()
+    if stream is not None:
+        redirect.enter_context(contextlib.redirect_stdout(stream))
+        redirect.enter_context(contextlib.redirect_stderr(stream))
+    try:
+        with redirect:
+            try:
+                yield logger
+            except BaseException:
+                logger.exception("failed")
+                raise
+    finally:
+        logging.captureWarnings(False)
+        root.removeHandler(handler)
+        root.setLevel(old_level)
+        handler.flush()
+        if stream is not None:
+            stream.close()

@@ -1,0 +1,166 @@
+"""The Snakemake workflow: config vs schema, the DAG plans on a fresh clone, rule hygiene,
+and one small scene run end to end (then a re-run does nothing)."""
+
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import jsonschema
+import pytest
+import yaml
+
+ROOT = Path(__file__).resolve().parents[1]
+CONFIG = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
+SCHEMA = yaml.safe_load((ROOT / "config" / "schema.yaml").read_text())
+PAPER = yaml.safe_load((ROOT / "config" / "paper_values.yaml").read_text())
+SNAKEMAKE = [sys.executable, "-m", "snakemake"]
+
+
+def fresh_clone(tmp_path) -> Path:
+    """The tracked workflow files in a new directory (no results/, no .snakemake/)."""
+    dest = tmp_path / "clone"
+    dest.mkdir()
+    shutil.copy2(ROOT / "Snakefile", dest / "Snakefile")
+    for d in ("workflow", "config", "src", "docs"):
+        if (ROOT / d).exists():
+            shutil.copytree(ROOT / d, dest / d, ignore=shutil.ignore_patterns("__pycache__", "*.egg-info"))
+    return dest
+
+
+def snakemake(cwd, *args, timeout=300):
+    return subprocess.run(
+        [*SNAKEMAKE, *args], cwd=cwd, capture_output=True, text=True, timeout=timeout
+    )
+
+
+# -- configuration -----------------------------------------------------------------------
+def test_config_validates_against_schema():
+    jsonschema.validate(CONFIG, SCHEMA)
+    from snakemake.utils import validate
+
+    validate(dict(CONFIG), str(ROOT / "config" / "schema.yaml"))
+
+
+@pytest.mark.parametrize(
+    "mutate, message",
+    [
+        (lambda c: c["surfaces"]["table1"].update(m00=-1.0), "m00"),
+        (lambda c: c["scenes"]["table1"]["tolerances"]["gw"]["pressure"].pop("why"), "why"),
+        (lambda c: c["scenes"]["table1"]["accuracy"].update(production="fast"), "fast"),
+        (lambda c: c["scenes"]["fig4"].update(hertz=["approximate"]), "approximate"),
+        (lambda c: c.update(reference_dps="twelve"), "twelve"),
+        (lambda c: c["scenes"]["fig3"].pop("s"), "'s'"),
+    ],
+)
+def test_schema_rejects_bad_configs(mutate, message):
+    import copy
+
+    bad = copy.deepcopy(CONFIG)
+    mutate(bad)
+    with pytest.raises(jsonschema.ValidationError, match=message):
+        jsonschema.validate(bad, SCHEMA)
+
+
+def test_scenes_refer_to_defined_surfaces_models_and_printed_rows():
+    for name, scene in CONFIG["scenes"].items():
+        if scene["kind"] == "table":
+            assert scene["surface"] in CONFIG["surfaces"]
+            assert set(scene["models"]) <= set(CONFIG["models"])
+            printed = PAPER[name]
+            assert [float(x) for x in printed["s"]] == [float(x) for x in scene["s"]]
+            assert printed["surface"] == CONFIG["surfaces"][scene["surface"]]
+            assert float(printed["E_star"]) == scene["E_star"]
+            for model in scene["models"]:
+                column = printed["columns"][CONFIG["models"][model]["paper_column"]]
+                for q in scene["quantities"]:
+                    assert len(column[q]) == len(scene["s"])
+                    assert q in scene["tolerances"][model], f"{name}/{model}/{q} has no tolerance"
+        for curve in scene.get("curves", []):
+            assert curve["surface"] in CONFIG["surfaces"]
+
+
+def test_paper_values_are_printed_strings():
+    for table in ("table1", "table2"):
+        for column in PAPER[table]["columns"].values():
+            for values in column.values():
+                assert all(isinstance(v, str) and float(v) > 0 for v in values)
+
+
+# -- rule hygiene --------------------------------------------------------------------------
+def _rule_blocks():
+    for smk in sorted((ROOT / "workflow" / "rules").glob("*.smk")):
+        text = smk.read_text()
+        for m in re.finditer(r"^rule (\w+):\n(.*?)(?=^\S|\Z)", text, flags=re.M | re.S):
+            yield smk.name, m.group(1), m.group(2)
+
+
+def test_every_rule_has_a_log_and_compute_rules_a_benchmark():
+    blocks = list(_rule_blocks())
+    assert {name for _, name, _ in blocks} >= {"reference", "production", "table", "figure", "verify"}
+    for smk, name, body in blocks:
+        if "output:" in body:
+            assert "log:" in body, f"{smk}: rule {name} has no log:"
+        if "PHYSICS_SOURCES" in body:  # rules that compute with the library
+            assert "benchmark:" in body, f"{smk}: compute rule {name} has no benchmark:"
+
+
+def test_profiles_and_entry_points_exist():
+    ci = yaml.safe_load((ROOT / "workflow" / "profiles" / "ci" / "config.yaml").read_text())
+    assert "reference_dps=12" in ci["config"] and ci["cores"] == 2
+    default = yaml.safe_load((ROOT / "workflow" / "profiles" / "default" / "config.yaml").read_text())
+    assert default["rerun-incomplete"] is True
+    makefile = (ROOT / "Makefile").read_text()
+    for target in ("reproduce:", "test:", "test-fast:", "verify:", "clean:"):
+        assert re.search(rf"^{target}", makefile, flags=re.M)
+    run = ROOT / ".ci" / "run"
+    assert run.stat().st_mode & 0o111, ".ci/run must be executable"
+    assert "set -euo pipefail" in run.read_text()
+    readme = (ROOT / "README.md").read_text().split("\n")
+    commands = [line.strip() for line in readme if line.strip().startswith("make ")]
+    assert commands[:2] == ["make reproduce", "make test"]
+
+
+# -- the DAG -----------------------------------------------------------------------------------
+def test_dry_run_plans_all_targets_on_a_fresh_clone(tmp_path):
+    clone = fresh_clone(tmp_path)
+    r = snakemake(clone, "-n", "all")
+    assert r.returncode == 0, r.stdout + r.stderr
+    out = r.stdout + r.stderr
+    tables = [n for n, s in CONFIG["scenes"].items() if s["kind"] == "table"]
+    n_models = sum(len(CONFIG["scenes"][t]["models"]) for t in tables)
+    assert re.search(rf"^reference\s+{n_models}$", out, flags=re.M), out
+    assert re.search(rf"^production\s+{n_models}$", out, flags=re.M), out
+    for rule in ("table", "figure", "verification_report", "verify", "all"):
+        assert re.search(rf"^{rule}\s+\d+$", out, flags=re.M), rule
+    # every named target plans (one invocation), and the CI profile plans the reference at
+    # its lower precision
+    r = snakemake(clone, "-n", "table1", "table2", "fig3", "fig4", "verify",
+                  "--profile", "workflow/profiles/ci", "--workflow-profile", "none")
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert "results/reference/dps12/table1/gw.nc" in r.stdout + r.stderr
+    # a table scene only asks for its own cells: no figure curves in its DAG
+    r = snakemake(clone, "-n", "table1")
+    assert "curves" not in (r.stdout + r.stderr).split("Job stats")[-1]
+
+
+def test_fig4_scene_end_to_end_then_nothing_to_do(tmp_path):
+    clone = fresh_clone(tmp_path)
+    r = snakemake(clone, "--cores", "1", "fig4")
+    assert r.returncode == 0, r.stdout + r.stderr
+    for f in ("paper_figures/fig4.png", "paper_figures/fig4.csv", "results/curves/fig4.nc",
+              "results/verify/fig4.checks.csv", "logs/curves/fig4.log", "logs/figure/fig4.log",
+              "results/benchmarks/curves/fig4.tsv"):
+        assert (clone / f).is_file(), f
+    from roughcontact import io, verify
+
+    ds = io.read_netcdf(clone / "results/curves/fig4.nc")
+    assert ds.sizes["e"] == CONFIG["scenes"]["fig4"]["e"]["num"]
+    assert ds["f1"].attrs["units"] == "1"
+    prov = io.read_provenance(ds)
+    assert prov["config"]["scene"] == "fig4" and prov["roughcontact_version"]
+    checks = verify.checks_from_csv((clone / "results/verify/fig4.checks.csv").read_text())
+    assert {c.status for c in checks} == {"ok"}, [c.detail for c in checks]
+    r = snakemake(clone, "-n", "fig4")
+    assert r.returncode == 0 and "Nothing to be done" in r.stdout + r.stderr

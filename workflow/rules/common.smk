@@ -1,0 +1,102 @@
+# Helpers shared by the rules: scenes from config, the library sources results depend on,
+# and the slice of the configuration recorded as provenance in each result.
+
+import copy
+from pathlib import Path
+
+REPO = Path(workflow.basedir)
+SCENES = config["scenes"]
+REFERENCE_DPS = int(config["reference_dps"])
+
+TABLE_SCENES = [name for name, sc in SCENES.items() if sc["kind"] == "table"]
+BEARING_SCENES = [name for name, sc in SCENES.items() if sc["kind"] == "bearing_ratio"]
+HERTZ_SCENES = [name for name, sc in SCENES.items() if sc["kind"] == "hertz_factors"]
+FIGURE_SCENES = BEARING_SCENES + HERTZ_SCENES
+MODEL_NAMES = list(config["models"])
+
+
+def _alternation(names):
+    """A regex matching exactly one of ``names`` (a never-matching one if empty)."""
+    return "|".join(names) if names else "(?!x)x"
+
+
+# Library modules whose code determines the numbers: editing one re-runs the computations
+# that use it (Snakemake's mtime trigger). Reporting modules (io, plots, verify, cli) are
+# excluded so that restyling a figure never re-runs the mpmath reference.
+_NOT_PHYSICS = {"io.py", "plots.py", "verify.py", "cli.py", "__main__.py"}
+PHYSICS_SOURCES = sorted(
+    str(p)
+    for p in (REPO / "src" / "roughcontact").glob("*.py")
+    if p.name not in _NOT_PHYSICS
+)
+REPORT_SOURCES = [
+    str(REPO / "src" / "roughcontact" / name)
+    for name in ("verify.py", "plots.py", "io.py")
+    if (REPO / "src" / "roughcontact" / name).exists()
+]
+
+
+def scene_targets():
+    """The user-facing files of every scene: tables (md, csv) and figures (png, csv)."""
+    out = []
+    for name in TABLE_SCENES:
+        out += [f"paper_figures/{name}.md", f"paper_figures/{name}.csv"]
+    for name in FIGURE_SCENES:
+        out += [f"paper_figures/{name}.png", f"paper_figures/{name}.csv"]
+    return out
+
+
+def scene_checks():
+    """The per-scene verification rows collected by VERIFICATION.md."""
+    return [f"results/verify/{name}.checks.csv" for name in TABLE_SCENES + FIGURE_SCENES]
+
+
+def surface_of(name):
+    return dict(config["surfaces"][name])
+
+
+def contact_job(scene, model, method, dps=None):
+    """Everything one contact computation needs (and records as provenance): one table scene,
+    one model level, one integrator. Only the scene's quantities are kept in the result."""
+    sc = SCENES[scene]
+    m = config["models"][model]
+    job = {
+        "scene": scene,
+        "model_name": model,
+        "surface_name": sc["surface"],
+        "surface": surface_of(sc["surface"]),
+        "E_star": float(sc["E_star"]),
+        "s": [float(x) for x in sc["s"]],
+        "quantities": list(sc["quantities"]),
+        "level": m["level"],
+        "model": "gw" if m["level"] == "gw" else "bgk",
+        "hertz": m["hertz"],
+        "method": method,
+        "units": dict(config["units"]),
+    }
+    if method == "reference":
+        job["dps"] = int(dps)  # the reference has no preset: its precision is dps
+    else:
+        job["accuracy"] = sc["accuracy"]["production"]
+    return job
+
+
+# Keys of a scene that only affect reports, never computed numbers: editing them must not
+# re-run a computation (Snakemake's params trigger), least of all the mpmath reference.
+REPORT_ONLY_KEYS = {"title", "tolerances", "claims"}
+
+
+def compute_config(scene):
+    """The part of a scene's configuration that determines its computed numbers."""
+    return {k: copy.deepcopy(v) for k, v in SCENES[scene].items() if k not in REPORT_ONLY_KEYS}
+
+
+def scene_provenance(scene):
+    """The configuration slice a figure scene's curves depend on (stored as config_json)."""
+    sc = compute_config(scene)
+    surfaces = [c["surface"] for c in sc.get("curves", [])]
+    return {
+        "scene": scene,
+        "scene_config": sc,
+        "surfaces": {name: surface_of(name) for name in surfaces},
+    }

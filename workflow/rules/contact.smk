@@ -1,0 +1,45 @@
+# Contact values of the table scenes: one job per (scene, model level) and integrator, at
+# exactly the scene's printed separations and quantities.
+#   reference   mpmath (slow, offline quality), cached per precision: results/reference/dps<N>/
+#   production  numba at the scene's accuracy preset: results/production/
+
+
+rule reference:
+    """mpmath reference values of one table scene and model level (slow: cached per dps)."""
+    input:
+        lib=PHYSICS_SOURCES,
+    output:
+        "results/reference/dps{dps}/{scene}/{model}.nc",
+    log:
+        "logs/reference/dps{dps}/{scene}/{model}.log",
+    benchmark:
+        "results/benchmarks/reference/dps{dps}/{scene}/{model}.tsv"
+    wildcard_constraints:
+        dps=r"\d+",
+        scene=_alternation(TABLE_SCENES),
+        model=_alternation(MODEL_NAMES),
+    params:
+        job=lambda w: contact_job(w.scene, w.model, "reference", dps=int(w.dps)),
+    threads: 1
+    script:
+        "../scripts/contact_values.py"
+
+
+rule production:
+    """Production (numba) values of one table scene and model level at its accuracy preset."""
+    input:
+        lib=PHYSICS_SOURCES,
+    output:
+        "results/production/{scene}/{model}.nc",
+    log:
+        "logs/production/{scene}/{model}.log",
+    benchmark:
+        "results/benchmarks/production/{scene}/{model}.tsv"
+    wildcard_constraints:
+        scene=_alternation(TABLE_SCENES),
+        model=_alternation(MODEL_NAMES),
+    params:
+        job=lambda w: contact_job(w.scene, w.model, "production"),
+    threads: 1
+    script:
+        "../scripts/contact_values.py"

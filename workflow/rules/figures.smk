@@ -1,0 +1,77 @@
+# Figures: curves at plotting accuracy (results/curves/<scene>.nc), then the PNG, the data as
+# CSV and the prose-claim checks (results/verify/<scene>.checks.csv).
+
+
+rule curves_bearing_ratio:
+    """A_G/A_B(s) of each surface of a bearing-ratio scene (Fig. 3), production quadrature."""
+    input:
+        lib=PHYSICS_SOURCES,
+    output:
+        "results/curves/{scene}.nc",
+    log:
+        "logs/curves/{scene}.log",
+    benchmark:
+        "results/benchmarks/curves/{scene}.tsv"
+    wildcard_constraints:
+        scene=_alternation(BEARING_SCENES),
+    params:
+        scene=lambda w: w.scene,
+        scene_config=lambda w: compute_config(w.scene),
+        surfaces=lambda w: {c["surface"]: surface_of(c["surface"]) for c in SCENES[w.scene]["curves"]},
+        provenance=lambda w: scene_provenance(w.scene),
+    script:
+        "../scripts/curves_bearing_ratio.py"
+
+
+rule curves_hertz_factors:
+    """f1(e), f2(e) of a Hertz-factor scene (Fig. 4), for each Hertz option."""
+    input:
+        lib=PHYSICS_SOURCES,
+    output:
+        "results/curves/{scene}.nc",
+    log:
+        "logs/curves/{scene}.log",
+    benchmark:
+        "results/benchmarks/curves/{scene}.tsv"
+    wildcard_constraints:
+        scene=_alternation(HERTZ_SCENES),
+    params:
+        scene=lambda w: w.scene,
+        scene_config=lambda w: compute_config(w.scene),
+        provenance=lambda w: scene_provenance(w.scene),
+    script:
+        "../scripts/curves_hertz_factors.py"
+
+
+rule figure:
+    """Plot a figure scene, export its data as CSV and check its prose claims."""
+    input:
+        data="results/curves/{scene}.nc",
+        expected="config/expected_verdicts.yaml",
+        code=REPORT_SOURCES,
+    output:
+        png="paper_figures/{scene}.png",
+        csv="paper_figures/{scene}.csv",
+        checks="results/verify/{scene}.checks.csv",
+    log:
+        "logs/figure/{scene}.log",
+    wildcard_constraints:
+        scene=_alternation(FIGURE_SCENES),
+    params:
+        scene=lambda w: w.scene,
+        scene_config=lambda w: SCENES[w.scene],
+    localrule: True
+    script:
+        "../scripts/figure.py"
+
+
+# One target rule per figure scene, named after it: `snakemake fig3`.
+for _scene in FIGURE_SCENES:
+
+    rule:
+        name:
+            _scene
+        localrule: True
+        input:
+            f"paper_figures/{_scene}.png",
+            f"paper_figures/{_scene}.csv",

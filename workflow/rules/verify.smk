@@ -1,0 +1,44 @@
+# The verification report (one row per table cell, numerics check and prose claim; errata)
+# and the gate that fails on a regression against config/expected_verdicts.yaml.
+
+
+def errata_input(wildcards):
+    path = REPO / "docs" / "errata.md"
+    return [str(path)] if path.exists() else []
+
+
+rule verification_report:
+    """paper_figures/VERIFICATION.md (+ CSV and a JSON summary) from every scene's checks."""
+    input:
+        checks=scene_checks(),
+        expected="config/expected_verdicts.yaml",
+        errata=errata_input,
+        code=REPORT_SOURCES,
+    output:
+        md="paper_figures/VERIFICATION.md",
+        csv="paper_figures/verification.csv",
+        summary="results/verify/summary.json",
+    log:
+        "logs/verify/report.log",
+    params:
+        scene_titles={name: sc["title"] for name, sc in SCENES.items()},
+        reference_dps=REFERENCE_DPS,
+    localrule: True
+    script:
+        "../scripts/verification_report.py"
+
+
+rule verify:
+    """Print the verification summary; fail (CI red) on any regression. Also builds every
+    table and figure, since the report needs all their checks."""
+    input:
+        scene_targets(),
+        summary="results/verify/summary.json",
+        report="paper_figures/VERIFICATION.md",
+    output:
+        "results/verify/passed",
+    log:
+        "logs/verify/gate.log",
+    localrule: True
+    script:
+        "../scripts/verify_gate.py"

@@ -1,0 +1,67 @@
+"""One paper table: compare production values with the printed ones and with the mpmath
+reference; write paper_figures/<scene>.md/.csv and results/verify/<scene>.checks.csv."""
+
+from pathlib import Path
+
+import yaml
+
+from roughcontact import io, verify
+
+
+def _values(paths):
+    """{model name: {quantity: values}} from the scene's netCDF files (file name = model)."""
+    out = {}
+    for path in paths:
+        ds = io.read_netcdf(path)
+        out[Path(path).stem] = {name: ds[name].values for name in ds.data_vars}
+        out[Path(path).stem]["_provenance"] = io.read_provenance(ds)
+    return out
+
+
+def run(scene, scene_config, models, numerics_rtol, reference_dps, production, reference, paper, expected, out, log):
+    with io.log_to(log) as logger:
+        paper_table = yaml.safe_load(Path(paper).read_text())[scene]
+        if [float(x) for x in paper_table["s"]] != [float(x) for x in scene_config["s"]]:
+            raise ValueError(f"{scene}: config s {scene_config['s']} differ from the printed rows {paper_table['s']}")
+        prod = _values(production)
+        ref = _values(reference) if reference else {}
+        provenance = next(iter(prod.values()))["_provenance"]
+        for d in (prod, ref):
+            for v in d.values():
+                v.pop("_provenance")
+        quantities = scene_config["quantities"]
+        checks = verify.table_cell_checks(
+            scene, paper_table, prod, models, scene_config["tolerances"], quantities
+        )
+        if ref:
+            checks += verify.numerics_checks(
+                scene, paper_table["s"], prod, ref, numerics_rtol, quantities, reference_dps
+            )
+        checks = verify.apply_expectations(checks, yaml.safe_load(Path(expected).read_text()))
+        for c in checks:
+            logger.info("%s: %s (%s) %s", c.id, c.verdict, c.status, c.detail)
+        shown = {
+            "roughcontact": provenance.get("roughcontact_version"),
+            "commit": str(provenance.get("git_commit", "unknown"))[:12],
+            "reference dps": reference_dps if ref else "none",
+        }
+        io.write_text(out["md"], verify.render_table_markdown(scene_config["title"], checks, paper_table, models, provenance=shown))
+        io.write_text(out["csv"], verify.render_table_csv(checks, models))
+        io.write_text(out["checks"], verify.checks_to_csv(checks))
+
+
+if "snakemake" in globals():
+    sm = snakemake  # noqa: F821
+    run(
+        sm.params.scene,
+        sm.params.scene_config,
+        sm.params.models,
+        sm.params.numerics_rtol,
+        sm.params.reference_dps,
+        list(sm.input.production),
+        list(sm.input.reference) if hasattr(sm.input, "reference") else [],
+        sm.input.paper,
+        sm.input.expected,
+        {"md": sm.output.md, "csv": sm.output.csv, "checks": sm.output.checks},
+        sm.log[0],
+    )

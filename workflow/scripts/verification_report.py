@@ -1,0 +1,36 @@
+"""paper_figures/VERIFICATION.md, verification.csv and results/verify/summary.json."""
+
+import json
+from pathlib import Path
+
+import yaml
+
+from roughcontact import __version__, io, verify
+
+
+def run(checks_files, expected, errata, scene_titles, reference_dps, out, log):
+    with io.log_to(log) as logger:
+        checks = []
+        for path in checks_files:
+            checks += verify.checks_from_csv(Path(path).read_text())
+        checks = verify.apply_expectations(checks, yaml.safe_load(Path(expected).read_text()))
+        errata_list = verify.parse_errata(Path(errata[0]).read_text()) if errata else []
+        provenance = {
+            "roughcontact": __version__,
+            "commit": io.git_commit()[:12],
+            "reference dps": reference_dps,
+        }
+        summary = verify.summarize(checks)
+        summary["provenance"] = provenance
+        logger.info("summary: %s", json.dumps({k: v for k, v in summary.items() if k != "by_kind"}))
+        io.write_text(out["md"], verify.render_verification_markdown(
+            checks, errata=errata_list, provenance=provenance, scene_titles=scene_titles))
+        io.write_text(out["csv"], verify.checks_to_csv(checks))
+        io.write_text(out["summary"], json.dumps(summary, indent=2, sort_keys=True) + "\n")
+
+
+if "snakemake" in globals():
+    sm = snakemake  # noqa: F821
+    run(list(sm.input.checks), sm.input.expected, list(sm.input.errata), sm.params.scene_titles,
+        sm.params.reference_dps, {"md": sm.output.md, "csv": sm.output.csv, "summary": sm.output.summary},
+        sm.log[0])
