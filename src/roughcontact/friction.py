@@ -376,8 +376,9 @@ def _ortho_solve_r(lam, r0, ttx, tty, ktx, kty, kxn, kyn, par, wk, tol):
 
 
 @numba.njit(cache=True)
-def _ortho_point(par, ktx, kty, kn, s_old, du, s_new, D, tol):
-    """One orthotropic update (section 8.1). Returns STICK/SLIP/OPEN or _FAILED."""
+def _begin_update(ktx, kty, kn, s_old, du, s_new, D):
+    """Shared start of both updates: copy the state, zero D, apply the normal law; for a
+    closed contact return the elastic (trial) tangential tractions, eq. (93)-(94)."""
     for j in range(NSTATE):
         s_new[j] = s_old[j]
     for a in range(3):
@@ -390,9 +391,16 @@ def _ortho_point(par, ktx, kty, kn, s_old, du, s_new, D, tol):
     if p <= 0.0:
         s_new[T_X] = 0.0
         s_new[T_Y] = 0.0
+        return True, p, dp, 0.0, 0.0
+    return False, p, dp, s_old[T_X] + ktx * du[0], s_old[T_Y] + kty * du[1]
+
+
+@numba.njit(cache=True)
+def _ortho_point(par, ktx, kty, kn, s_old, du, s_new, D, tol):
+    """One orthotropic update (section 8.1). Returns STICK/SLIP/OPEN or _FAILED."""
+    is_open, p, dp, ttx, tty = _begin_update(ktx, kty, kn, s_old, du, s_new, D)
+    if is_open:
         return OPEN
-    ttx = s_old[T_X] + ktx * du[0]  # elastic predictor, eq. (93)-(94)
-    tty = s_old[T_Y] + kty * du[1]
     kxn = s_old[KAPPA_X]
     kyn = s_old[KAPPA_Y]
     mux, _ = _hardening(par[0], par[2], par[4], kxn)
@@ -502,21 +510,9 @@ def _iso_eval(lam, ttx, tty, ktx, kty, kapn, par):
 @numba.njit(cache=True)
 def _iso_point(par, ktx, kty, kn, s_old, du, s_new, D, tol):
     """One isotropic update (section 8.2). Returns STICK/SLIP/OPEN or _FAILED."""
-    for j in range(NSTATE):
-        s_new[j] = s_old[j]
-    for a in range(3):
-        for b in range(3):
-            D[a, b] = 0.0
-    u_n = s_old[U_N] + du[2]
-    p, dp = _normal_law(u_n, kn)
-    s_new[U_N] = u_n
-    s_new[T_N] = p
-    if p <= 0.0:
-        s_new[T_X] = 0.0
-        s_new[T_Y] = 0.0
+    is_open, p, dp, ttx, tty = _begin_update(ktx, kty, kn, s_old, du, s_new, D)
+    if is_open:
         return OPEN
-    ttx = s_old[T_X] + ktx * du[0]
-    tty = s_old[T_Y] + kty * du[1]
     kapn = s_old[KAPPA]
     mu0, _ = _hardening(par[0], par[1], par[2], kapn)
     if math.sqrt(ttx * ttx + tty * tty) - mu0 * p <= 0.0:  # f ≤ 0, eq. (120): stick
