@@ -25,6 +25,7 @@ __all__ = [
     "QuadratureSettings",
     "PRESETS",
     "settings_for",
+    "theta_rule",
     "normal_moment",
     "polar_elastic_integrals",
 ]
@@ -105,8 +106,9 @@ def _t_window(a):
     span = math.sqrt(2.0 * TAIL)
     if a > 0.0:
         return max(0.0, a - span), a + span
-    # maximum at t = 0: exp(−(t − a)²/2)/exp(−a²/2) = exp(−|a| t − t²/2)
-    return 0.0, -(-a) + math.sqrt(a * a + 2.0 * TAIL)
+    # maximum at t = 0: exp(−(t − a)²/2)/exp(−a²/2) = exp(−|a| t − t²/2) = e^{−TAIL}
+    # at t = −|a| + √(a² + 2 TAIL), i.e. a + √(a² + 2 TAIL) since a ≤ 0
+    return 0.0, a + math.sqrt(a * a + 2.0 * TAIL)
 
 
 @numba.njit(cache=True)
