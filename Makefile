@@ -1,10 +1,11 @@
 # roughcontact — one entry point for a fresh machine with Python 3.11 and pip.
 #
 #   make reproduce   create .venv (if missing), install, run the whole Snakemake workflow
-#   make test        create .venv (if missing), install, run the whole test suite
+#   make test        create .venv (if missing), install, run the test suite (fast tier, < 3 min)
 #
-# Other targets: test-fast (skip the mpmath-marked tests), verify (verification report and
-# verdict gate only), dry-run, ci (.ci/run), clean (generated results), distclean (+ .venv).
+# Other targets: test-mpmath (the slow high-precision tier, run by CI), test-all (both tiers),
+# verify (verification report and verdict gate only), dry-run, ci (.ci/run), clean (generated
+# results), distclean (+ .venv).
 
 SHELL := /bin/bash
 .DEFAULT_GOAL := help
@@ -20,10 +21,10 @@ SNAKEMAKE := $(BIN)/snakemake --workflow-profile workflow/profiles/default --cor
 # need no re-install).
 STAMP  := $(VENV)/.installed
 
-.PHONY: help venv reproduce test test-fast verify dry-run ci clean distclean
+.PHONY: help venv reproduce test test-mpmath test-all verify dry-run ci clean distclean
 
 help:
-	@sed -n '3,9p' Makefile
+	@sed -n '3,8p' Makefile
 
 $(PY):
 	@test -n "$(PYTHON)" || { echo "error: python3.11 (or python3 >= 3.11) not found" >&2; exit 1; }
@@ -39,11 +40,15 @@ venv: $(STAMP)
 reproduce: $(STAMP)
 	$(SNAKEMAKE) all
 
+# pyproject.toml deselects the mpmath-marked tests by default ("fast by default")
 test: $(STAMP)
 	$(PY) -m pytest
 
-test-fast: $(STAMP)
-	$(PY) -m pytest -m "not mpmath"
+test-mpmath: $(STAMP)
+	$(PY) -m pytest -m mpmath
+
+test-all: $(STAMP)
+	$(PY) -m pytest -m ""
 
 verify: $(STAMP)
 	$(SNAKEMAKE) verify
