@@ -119,11 +119,7 @@ def _theta_nodes(surface: SpectralMoments, hertz: str, accuracy):
     """θ-nodes and the per-node weights (w_area, w_load, w_bearing, g) of docs/derivation.md."""
     settings = settings_for(accuracy)
     geom = PolarGeometry(surface)
-    breaks = [geom.theta_circle, geom.theta_peak]
-    for lam in ellipse.kinks(hertz):
-        if lam < 1.0:
-            breaks.extend(geom.theta_at_lambda(lam))
-    theta, w = theta_rule(breaks, settings)
+    theta, w = theta_rule(geom.theta_breaks(hertz), settings)
     lam = np.sqrt(geom.lambda_squared(theta))
     factors = ellipse.hertz_factors(lam, hertz)
     cs = np.cos(theta) * np.sin(theta)

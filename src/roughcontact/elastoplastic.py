@@ -207,21 +207,13 @@ def _material_constants(material: AsperityMaterial):
 # ---------------------------------------------------------------------------------------
 # θ-node data (as contact._theta_nodes, plus f3 and the critical interference)
 # ---------------------------------------------------------------------------------------
-def _theta_breaks(geom: PolarGeometry, hertz: str) -> list[float]:
-    breaks = [geom.theta_circle, geom.theta_peak]
-    for lam in ellipse.kinks(hertz):
-        if lam < 1.0:
-            breaks.extend(geom.theta_at_lambda(lam))
-    return breaks
-
-
 @functools.lru_cache(maxsize=64)
 def _theta_nodes(surface: SpectralMoments, hertz: str, accuracy, material: AsperityMaterial):
     """θ-weights (× cos θ sin θ) and per-node g, c, f1, f2, f3, tc1 (the same nodes as
     contact._theta_nodes). tc1 = ω_c(θ, κ_m = c(θ))/√(m00 μ) by asperity.critical_interference."""
     settings = elastoplastic_settings_for(accuracy)
     geom = PolarGeometry(surface)
-    theta, w = theta_rule(_theta_breaks(geom, hertz), settings)
+    theta, w = theta_rule(geom.theta_breaks(hertz), settings)
     lam = np.sqrt(geom.lambda_squared(theta))
     factors = ellipse.hertz_factors(lam, hertz)
     c = geom.c(theta)
@@ -332,7 +324,7 @@ def reference_integrals(
     pv = (2.0 / 3.0) * material.K_v * material.H
     with_jump = abs(material.load_jump_at_yield) > _JUMP_TOL
     span = math.sqrt(2.0 * _REF_TAIL)
-    breaks = sorted(b for b in _theta_breaks(geom, hertz) if 0.0 < b < 0.5 * math.pi)
+    breaks = sorted(b for b in geom.theta_breaks(hertz) if 0.0 < b < 0.5 * math.pi)
     edges = [0.0, *breaks, 0.5 * math.pi]
 
     def theta_batch(th, proj, tol, atol):

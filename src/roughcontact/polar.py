@@ -16,6 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from . import ellipse
 from .surface import SpectralMoments
 
 __all__ = ["PolarGeometry", "ElasticPrefactors"]
@@ -47,6 +48,15 @@ class PolarGeometry:
         (ρ = lam² on the far side of θ*, ρ = 1/lam² on the near side)."""
         k = math.sqrt(self.surface.m40 / self.surface.m04)  # ρ = k cot θ
         return math.atan(k * lam**2), math.atan(k / lam**2)
+
+    def theta_breaks(self, hertz: str) -> list[float]:
+        """θ where an integrand of this surface is not smooth or is peaked, for splitting the
+        θ-integral: the axis turn θ*, the peak of g, and the kinks of the Hertz option."""
+        breaks = [self.theta_circle, self.theta_peak]
+        for lam in ellipse.kinks(hertz):
+            if lam < 1.0:
+                breaks.extend(self.theta_at_lambda(lam))
+        return breaks
 
     def g(self, theta):
         s = self.surface

@@ -28,6 +28,10 @@ __all__ = [
     "theta_rule",
     "normal_moment",
     "polar_elastic_integrals",
+    "ELASTOPLASTIC_PRESETS",
+    "elastoplastic_settings_for",
+    "asperity_law",
+    "polar_elastoplastic_integrals",
 ]
 
 #: -ln of the relative size at which Gaussian tails are cut (e^-50 ≈ 2e-22).
@@ -85,15 +89,17 @@ PRESETS: dict[str, QuadratureSettings] = {
 }
 
 
-def settings_for(accuracy) -> QuadratureSettings:
-    """Resolve an accuracy preset name (or pass a QuadratureSettings through)."""
+def settings_for(accuracy, presets: dict[str, QuadratureSettings] | None = None) -> QuadratureSettings:
+    """Resolve an accuracy preset name of ``presets`` (default: the elastic PRESETS), or pass a
+    QuadratureSettings through."""
     if isinstance(accuracy, QuadratureSettings):
         return accuracy
+    presets = PRESETS if presets is None else presets
     try:
-        return PRESETS[accuracy]
-    except KeyError:
+        return presets[accuracy]
+    except (KeyError, TypeError):
         raise ValueError(
-            f"unknown accuracy preset {accuracy!r}; choose one of {sorted(PRESETS)}"
+            f"unknown accuracy preset {accuracy!r}; choose one of {sorted(presets)}"
         ) from None
 
 
@@ -497,11 +503,4 @@ ELASTOPLASTIC_PRESETS: dict[str, QuadratureSettings] = {
 
 def elastoplastic_settings_for(accuracy) -> QuadratureSettings:
     """Resolve an elasto-plastic accuracy preset name (or pass a QuadratureSettings through)."""
-    if isinstance(accuracy, QuadratureSettings):
-        return accuracy
-    try:
-        return ELASTOPLASTIC_PRESETS[accuracy]
-    except KeyError:
-        raise ValueError(
-            f"unknown accuracy preset {accuracy!r}; choose one of {sorted(ELASTOPLASTIC_PRESETS)}"
-        ) from None
+    return settings_for(accuracy, ELASTOPLASTIC_PRESETS)
