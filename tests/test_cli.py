@@ -119,12 +119,68 @@ def test_elastic_text_table(capsys):
 
 
 def test_choices_match_library():
-    from roughcontact import contact, quadrature
+    from roughcontact import closures, contact, elastoplastic, quadrature
 
     assert cli.MODELS == contact.MODELS
-    assert cli.HERTZ == contact.HERTZ
-    assert cli.METHODS == contact.METHODS
-    assert set(cli.ACCURACIES) == set(quadrature.PRESETS)
+    assert cli.HERTZ == contact.HERTZ == elastoplastic.HERTZ
+    assert cli.METHODS == contact.METHODS == elastoplastic.METHODS
+    assert set(cli.ACCURACIES) == set(quadrature.PRESETS) == set(quadrature.ELASTOPLASTIC_PRESETS)
+    assert cli.CLOSURES == tuple(closures.CLOSURES)
+    assert cli.EP_DEFAULTS == closures.DEFAULTS
+
+
+# ---------------------------------------------------------------------------------------
+# elastoplastic
+# ---------------------------------------------------------------------------------------
+EP = ["elastoplastic", *MOMENT_ARGS, "--E-star", E_STAR]
+
+
+def test_elastoplastic_json_matches_library(capsys):
+    """--psi: closure yield-from-psi (psi is kept); the numbers are the library's."""
+    from roughcontact import SpectralMoments
+    from roughcontact.closures import resolve_material
+    from roughcontact.elastoplastic import elastoplastic_contact
+
+    s = ["0.0", "1.0", "2.5"]
+    d = run_json(capsys, *EP, "--psi", "0.5", "--s", *s, "--accuracy", "plot")
+    for key in ("s", "area_fraction", "pressure", "stiffness", "plastic_area_fraction",
+                "elastoplastic_area_fraction", "psi", "units"):
+        assert key in d, key
+    assert d["closure"] == "yield-from-psi" and d["psi"] == pytest.approx(0.5, rel=1e-14)
+    surface = SpectralMoments(**M)
+    lib = elastoplastic_contact(surface, [float(x) for x in s],
+                                resolve_material(surface, E_star=float(E_STAR), psi=0.5), accuracy="plot")
+    for key in ("area_fraction", "pressure", "stiffness", "plastic_area_fraction", "elastoplastic_area_fraction"):
+        assert d[key] == [float(x) for x in getattr(lib, key)], key
+    assert all(0 < a < 1 for a in d["area_fraction"])
+    assert d["material"]["H"] == pytest.approx(d["material"]["Y"] / 0.354, rel=1e-15)
+    assert "E*" in d["units"]["pressure"] and d["units"]["psi"] == "1"
+
+
+def test_elastoplastic_yield_strength_gives_physical_psi(capsys):
+    """--yield-strength: the material is physical and ψ an output (0.88 for the caption's
+    E* = 1.14e5, Y = 2070 N/mm² on the Table 1 surface, NOTES.md)."""
+    d = run_json(capsys, *EP, "--yield-strength", "2070", "--s", "1", "--accuracy", "plot")
+    assert d["closure"] == "material"
+    assert d["psi"] == pytest.approx(0.88, abs=0.005)
+    assert d["material"]["Y"] == 2070.0 and d["material"]["yield_coefficient"] == 1.62
+    assert (d["material"]["c_h"], d["material"]["wp_over_wc"]) == (0.967, 45.0)
+
+
+def test_elastoplastic_overrides_and_paper_literal(capsys):
+    d = run_json(capsys, *EP, "--psi", "0.35", "--yield-strength", "2070", "--closure", "paper-literal",
+                 "--s", "1", "--c-h", "0.9", "--wp-over-wc", "30", "--accuracy", "plot")
+    assert d["closure"] == "paper-literal" and d["psi"] == pytest.approx(0.35, rel=1e-14)
+    assert (d["material"]["c_h"], d["material"]["wp_over_wc"]) == (0.9, 30.0)
+    assert d["material"]["H"] == pytest.approx(2070 / 0.354, rel=1e-15)
+
+
+def test_elastoplastic_text_table(capsys):
+    code, out, err = run(capsys, *EP, "--psi", "0.5", "--s", "1", "2", "--accuracy", "plot")
+    assert code == 0 and err == ""
+    lines = out.splitlines()
+    assert "psi=0.5" in lines[0] and "closure=yield-from-psi" in lines[0]
+    assert lines[1].split() == ["s", "area_fraction", "pressure", "stiffness"]
 
 
 def test_version(capsys):
@@ -171,6 +227,16 @@ BAD = {
     "unknown method": ["elastic", *_moments(), *ELASTIC, "--method", "fast"],
     "unknown accuracy": ["elastic", *_moments(), *ELASTIC, "--accuracy", "best"],
     "elastic mu <= 0": ["elastic", *_moments(m40="1e-7"), *ELASTIC],
+    "ep neither psi nor Y": ["elastoplastic", *_moments(), *ELASTIC],
+    "ep psi and Y, no closure": ["elastoplastic", *_moments(), *ELASTIC, "--psi", "0.5", "--yield-strength", "2070"],
+    "ep negative psi": ["elastoplastic", *_moments(), *ELASTIC, "--psi", "-0.5"],
+    "ep zero Y": ["elastoplastic", *_moments(), *ELASTIC, "--yield-strength", "0"],
+    "ep closure needs psi": ["elastoplastic", *_moments(), *ELASTIC, "--yield-strength", "2070",
+                             "--closure", "yield-from-psi"],
+    "ep unknown closure": ["elastoplastic", *_moments(), *ELASTIC, "--psi", "0.5", "--closure", "gw"],
+    "ep wp/wc <= 1": ["elastoplastic", *_moments(), *ELASTIC, "--psi", "0.5", "--wp-over-wc", "1"],
+    "ep nan c_h": ["elastoplastic", *_moments(), *ELASTIC, "--psi", "0.5", "--c-h", "nan"],
+    "ep non-finite s": ["elastoplastic", *_moments(), "--E-star", E_STAR, "--s", "inf", "--psi", "0.5"],
 }
 
 

@@ -7,6 +7,11 @@ A thin layer: parse and validate the arguments, call the library, print the resu
     roughcontact elastic --m00 M ... --m04 M --E-star E --s S [S ...]
                          [--model bgk|gw] [--hertz exact|paper]
                          [--method production|reference] [--accuracy table|plot] [--json]
+    roughcontact elastoplastic --m00 M ... --m04 M --E-star E (--psi P | --yield-strength Y)
+                         [--closure material|yield-from-psi|paper-literal] --s S [S ...]
+                         [--yield-coefficient K] [--c-h C] [--wp-over-wc R] [--hardness H]
+                         [--K-v KV] [--hertz exact|paper] [--method production|reference]
+                         [--accuracy table|plot] [--json]
     roughcontact mindlin --b2-over-a2 R [R ...] --nu NU [--json]
 
 Exit codes: 0 success; 2 bad input (one line on stderr, "roughcontact: error: ...");
@@ -15,10 +20,10 @@ Exit codes: 0 success; 2 bad input (one line on stderr, "roughcontact: error: ..
 Lengths are in the unit L of the moments (m00 [L²], m20, m02 [–], m40, m04 [L⁻²]);
 pressures come out in the unit of E*, stiffnesses in (unit of E*)/L.
 
-New subcommands (e.g. ``elastoplastic``, ``mindlin``) register themselves like
-:func:`_add_surface` / :func:`_add_elastic`: a subparser built on the shared ``moments``
-parent parser, with ``func`` set to a handler ``(args) -> payload dict`` and ``render``
-set to the human-readable formatter of that payload.
+Subcommands register themselves like :func:`_add_surface` / :func:`_add_elastic`: a subparser
+built on the shared ``moments`` (and, for contact, ``contact``) parent parsers, with ``func``
+set to a handler ``(args) -> payload dict`` and ``render`` set to the human-readable formatter
+of that payload.
 """
 
 from __future__ import annotations
@@ -68,6 +73,9 @@ MODELS = ("bgk", "gw")
 HERTZ = ("exact", "paper")
 METHODS = ("production", "reference")
 ACCURACIES = ("table", "plot")
+# roughcontact.closures.CLOSURES / DEFAULTS, likewise repeated (and checked by the tests)
+CLOSURES = ("material", "yield-from-psi", "paper-literal")
+EP_DEFAULTS = {"yield_coefficient": 1.62, "c_h": 0.967, "wp_over_wc": 45.0}
 
 
 class CLIError(Exception):
@@ -118,6 +126,26 @@ def _output_parent() -> argparse.ArgumentParser:
     return parent
 
 
+def _contact_parent() -> argparse.ArgumentParser:
+    """Options shared by the contact commands (elastic, elastoplastic)."""
+    parent = _Parser(add_help=False)
+    parent.add_argument(
+        "--E-star", dest="E_star", type=_real, required=True, metavar="E",
+        help="effective modulus E* (any stress unit; the pressure comes out in it)",
+    )
+    parent.add_argument(
+        "--s", dest="s", type=_real, nargs="+", required=True, metavar="S",
+        help="separations s = h/sqrt(m00) of the flat from the mean plane",
+    )
+    parent.add_argument("--hertz", choices=HERTZ, default="exact",
+                        help="Hertz functions: exact, or the paper's approximations (default exact)")
+    parent.add_argument("--method", choices=METHODS, default="production",
+                        help="integrator: production (numba) or reference (slow twin)")
+    parent.add_argument("--accuracy", choices=ACCURACIES, default="table",
+                        help="production quadrature preset (default table)")
+    return parent
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(
         prog=PROG,
@@ -128,7 +156,9 @@ def build_parser() -> argparse.ArgumentParser:
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
     parents = [_moments_parent(), _output_parent()]
     _add_surface(sub, parents)
-    _add_elastic(sub, parents)
+    contact = [*parents, _contact_parent()]
+    _add_elastic(sub, contact)
+    _add_elastoplastic(sub, contact)
     _add_mindlin(sub, [_output_parent()])
     return parser
 
@@ -151,23 +181,39 @@ def _add_elastic(sub, parents) -> None:
         description="Elastic contact with a rigid flat per unit nominal area at the "
         "separations s = h/sqrt(m00).",
     )
-    p.add_argument(
-        "--E-star", dest="E_star", type=_real, required=True, metavar="E",
-        help="effective modulus E* (any stress unit; the pressure comes out in it)",
-    )
-    p.add_argument(
-        "--s", dest="s", type=_real, nargs="+", required=True, metavar="S",
-        help="separations s = h/sqrt(m00) of the flat from the mean plane",
-    )
     p.add_argument("--model", choices=MODELS, default="bgk",
                    help="bgk: elliptic asperities; gw: McCool's equivalent GW (default bgk)")
-    p.add_argument("--hertz", choices=HERTZ, default="exact",
-                   help="Hertz functions: exact, or the paper's approximations (default exact)")
-    p.add_argument("--method", choices=METHODS, default="production",
-                   help="integrator: production (numba) or reference (mpmath)")
-    p.add_argument("--accuracy", choices=ACCURACIES, default="table",
-                   help="production quadrature preset (default table)")
     p.set_defaults(func=_run_elastic, render=_render_elastic)
+
+
+def _add_elastoplastic(sub, parents) -> None:
+    p = sub.add_parser(
+        "elastoplastic",
+        parents=parents,
+        help="elasto-plastic contact area, pressure and stiffness vs separation",
+        description="Elasto-plastic contact (sections 5-7: Hertz, ZMC/Jeng-Wang transition, "
+        "CEB/Horng plastic) with a rigid flat per unit nominal area at s = h/sqrt(m00). "
+        "With --yield-strength the material is physical and psi is an output; with --psi the "
+        "closure yield-from-psi derives Y from psi at fixed E* (docs: roughcontact.closures).",
+    )
+    p.add_argument("--psi", type=_real, metavar="P", help="plasticity index psi (prescribed)")
+    p.add_argument("--yield-strength", dest="Y", type=_real, metavar="Y",
+                   help="yield strength Y (unit of E*); H = Y/0.354 (Tabor) unless --hardness")
+    p.add_argument("--closure", choices=CLOSURES, default=None,
+                   help="how psi and the material are reconciled (default: material with "
+                   "--yield-strength, yield-from-psi with --psi; paper-literal needs both)")
+    p.add_argument("--yield-coefficient", dest="yield_coefficient", type=_real,
+                   default=EP_DEFAULTS["yield_coefficient"], metavar="K",
+                   help="K in p_max = K Y at first yield, eq. (63) (default 1.62)")
+    p.add_argument("--c-h", dest="c_h", type=_real, default=EP_DEFAULTS["c_h"], metavar="C",
+                   help="fully plastic mean pressure c_h H, eq. (66) (default 0.967)")
+    p.add_argument("--wp-over-wc", dest="wp_over_wc", type=_real, default=EP_DEFAULTS["wp_over_wc"],
+                   metavar="R", help="omega_p/omega_c, end of the transition (default 45)")
+    p.add_argument("--hardness", dest="H", type=_real, default=None, metavar="H",
+                   help="hardness H (unit of E*; default Y/0.354, eq. (68))")
+    p.add_argument("--K-v", dest="K_v", type=_real, default=None, metavar="KV",
+                   help="K_v of eq. (75) (default: K Y/H, continuous load at omega_c)")
+    p.set_defaults(func=_run_elastoplastic, render=_render_elastic)
 
 
 def _add_mindlin(sub, parents) -> None:
@@ -226,6 +272,40 @@ def _run_elastic(args) -> dict[str, Any]:
     }
 
 
+def _run_elastoplastic(args) -> dict[str, Any]:
+    from .closures import default_closure, resolve_material
+    from .elastoplastic import elastoplastic_contact
+
+    surface = _surface_from(args)
+    material = resolve_material(
+        surface, E_star=args.E_star, psi=args.psi, Y=args.Y, closure=args.closure, H=args.H,
+        yield_coefficient=args.yield_coefficient, c_h=args.c_h, wp_over_wc=args.wp_over_wc,
+        K_v=args.K_v,
+    )
+    curves = elastoplastic_contact(
+        surface, args.s, material, hertz=args.hertz, method=args.method, accuracy=args.accuracy
+    )
+    fields = ("area_fraction", "pressure", "stiffness", "elastic_area_fraction",
+              "elastoplastic_area_fraction", "plastic_area_fraction")
+    m = curves.material
+    return {
+        "s": [float(x) for x in curves.s],
+        **{f: [float(x) for x in getattr(curves, f)] for f in fields},
+        "psi": float(curves.psi),
+        "closure": args.closure or default_closure(args.psi, args.Y),
+        "material": {"E_star": m.E_star, "Y": m.Y, "H": m.H, "yield_coefficient": m.yield_coefficient,
+                     "c_h": m.c_h, "wp_over_wc": m.wp_over_wc, "K_v": m.K_v},
+        "units": {k: v for k, v in curves.units.items() if k in ("s", *fields)}
+        | {"psi": "1", "material": "stresses in the unit of E*"},
+        "model": "bgk-elastoplastic",
+        "hertz": curves.hertz,
+        "method": curves.method,
+        "accuracy": args.accuracy if curves.method == "production" else None,
+        "E_star": m.E_star,
+        "moments": surface.as_dict(),
+    }
+
+
 def _run_mindlin(args) -> dict[str, Any]:
     from .tangential import kn_over_kt
 
@@ -265,6 +345,8 @@ def _render_elastic(payload: dict[str, Any]) -> str:
         f"model={payload['model']}  hertz={payload['hertz']}  method={payload['method']}"
         f"  E*={payload['E_star']:.8g}"
     )
+    if "psi" in payload:
+        head += f"  psi={payload['psi']:.6g}  closure={payload['closure']}"
     cols = ("s", "area_fraction", "pressure", "stiffness")
     units = ("h/sqrt(m00)", "A/A0", "unit of E*", "E*-unit/L")
     w = 16
