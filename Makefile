@@ -3,7 +3,7 @@
 #   make reproduce   create .venv (if missing), install, run the whole Snakemake workflow
 #   make test        create .venv (if missing), install, run the test suite (fast tier, < 3 min)
 #
-# Other targets: test-mpmath (the slow high-precision tier, run by CI), test-all (both tiers),
+# Other targets: test-slow (the slow tier: mpmath references, workflow runs; CI runs it), test-all,
 # verify (verification report and verdict gate only), dry-run, ci (.ci/run), clean (generated
 # results), distclean (+ .venv).
 
@@ -21,7 +21,7 @@ SNAKEMAKE := $(BIN)/snakemake --workflow-profile workflow/profiles/default --cor
 # need no re-install).
 STAMP  := $(VENV)/.installed
 
-.PHONY: help venv reproduce test test-mpmath test-all verify dry-run ci clean distclean
+.PHONY: help venv reproduce test test-slow test-all verify dry-run ci clean distclean
 
 help:
 	@sed -n '3,8p' Makefile
@@ -32,7 +32,7 @@ $(PY):
 	$(PYTHON) -m venv $(VENV)
 
 $(STAMP): pyproject.toml | $(PY)
-	$(PY) -m pip install --quiet --editable '.[test]'
+	$(PY) -m pip install --quiet --editable '.[test,cluster]'
 	@touch $@
 
 venv: $(STAMP)
@@ -40,12 +40,12 @@ venv: $(STAMP)
 reproduce: $(STAMP)
 	$(SNAKEMAKE) all
 
-# pyproject.toml deselects the mpmath-marked tests by default ("fast by default")
+# pyproject.toml deselects the mpmath- and slow-marked tests by default ("fast by default")
 test: $(STAMP)
 	$(PY) -m pytest
 
-test-mpmath: $(STAMP)
-	$(PY) -m pytest -m mpmath
+test-slow: $(STAMP)
+	$(PY) -m pytest -m "mpmath or slow"
 
 test-all: $(STAMP)
 	$(PY) -m pytest -m ""

@@ -1,8 +1,9 @@
-# roughcontact: reproduction of Buczkowski & Kleiber (2009), Tables 1-2 and Figs 3-4.
+# roughcontact: reproduction of Buczkowski & Kleiber (2009): Tables 1-2, Figs 3-8, the prose
+# claims of sections 3-7 and 10, and parameter sweeps.
 #
 #   snakemake -n all                        plan everything (works on a fresh clone)
-#   snakemake --cores 2 all                 tables, figures, VERIFICATION.md, verdict gate
-#   snakemake --cores 2 table1 | table2 | fig3 | fig4 | verify
+#   snakemake --cores 2 all                 tables, figures, sweeps, VERIFICATION.md, verdict gate
+#   snakemake --cores 2 table1 | table2 | fig3 ... fig8 | stiffness_sensitivity | sweeps | verify
 #
 # `make reproduce` / `make verify` add the default profile (workflow/profiles/default:
 # rerun-incomplete, so a killed run resumes); CI uses workflow/profiles/ci (lower reference
@@ -28,6 +29,7 @@ rule all:
     localrule: True
     input:
         scene_targets(),
+        [f"results/sweeps/{name}.nc" for name in SWEEPS],
         "paper_figures/VERIFICATION.md",
         "results/verify/passed",
 
@@ -35,4 +37,5 @@ rule all:
 include: "workflow/rules/contact.smk"
 include: "workflow/rules/tables.smk"
 include: "workflow/rules/figures.smk"
+include: "workflow/rules/sweeps.smk"
 include: "workflow/rules/verify.smk"

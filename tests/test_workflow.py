@@ -1,5 +1,6 @@
 """The Snakemake workflow: config vs schema, the DAG plans on a fresh clone, rule hygiene,
-and one small scene run end to end (then a re-run does nothing)."""
+one small scene run end to end (then a re-run does nothing), the cluster profiles (SLURM plans;
+a sweep dispatched through the generic cluster executor with a local submit script)."""
 
 import re
 import shutil
@@ -108,11 +109,17 @@ def test_every_rule_has_a_log_and_compute_rules_a_benchmark():
 
 def test_profiles_and_entry_points_exist():
     ci = yaml.safe_load((ROOT / "workflow" / "profiles" / "ci" / "config.yaml").read_text())
+    slurm = yaml.safe_load((ROOT / "workflow" / "profiles" / "slurm" / "config.yaml").read_text())
+    assert slurm["executor"] == "slurm"
+    local = yaml.safe_load((ROOT / "workflow" / "profiles" / "cluster-local" / "config.yaml").read_text())
+    assert local["executor"] == "cluster-generic"
+    assert (ROOT / local["cluster-generic-submit-cmd"]).stat().st_mode & 0o111
+    assert "make test-slow" in (ROOT / ".ci" / "run").read_text()
     assert "reference_dps=12" in ci["config"] and ci["cores"] == 2
     default = yaml.safe_load((ROOT / "workflow" / "profiles" / "default" / "config.yaml").read_text())
     assert default["rerun-incomplete"] is True
     makefile = (ROOT / "Makefile").read_text()
-    for target in ("reproduce:", "test:", "test-fast:", "verify:", "clean:"):
+    for target in ("reproduce:", "test:", "test-slow:", "verify:", "clean:"):
         assert re.search(rf"^{target}", makefile, flags=re.M)
     run = ROOT / ".ci" / "run"
     assert run.stat().st_mode & 0o111, ".ci/run must be executable"
@@ -143,6 +150,17 @@ def test_dry_run_plans_all_targets_on_a_fresh_clone(tmp_path):
     # a table scene only asks for its own cells: no figure curves in its DAG
     r = snakemake(clone, "-n", "table1")
     assert "curves" not in (r.stdout + r.stderr).split("Job stats")[-1]
+    # elasto-plastic scenes: one curves job per computing scene (Fig. 6 uses Fig. 5's), the
+    # sweeps split into their configured parts, every figure target plans
+    ep = [n for n, s in CONFIG["scenes"].items()
+          if s["kind"] in ("elastoplastic_psi", "stiffness_pressure", "stiffness_sensitivity") and "uses" not in s]
+    assert re.search(rf"^curves_elastoplastic\s+{len(ep)}$", out, flags=re.M), out
+    parts = sum(sw["split"]["jobs"] for sw in CONFIG.get("sweeps", {}).values())
+    assert re.search(rf"^sweep_part\s+{parts}$", out, flags=re.M), out
+    r = snakemake(clone, "-n", "fig5", "fig6", "fig7", "fig8", "stiffness_sensitivity", "sweeps")
+    assert r.returncode == 0, r.stdout + r.stderr
+    r = snakemake(clone, "-n", "fig6")
+    assert "results/curves/fig5.nc" in r.stdout + r.stderr and "results/curves/fig6.nc" not in r.stdout + r.stderr
 
 
 def test_fig4_scene_end_to_end_then_nothing_to_do(tmp_path):
@@ -164,3 +182,59 @@ def test_fig4_scene_end_to_end_then_nothing_to_do(tmp_path):
     assert {c.status for c in checks} == {"ok"}, [c.detail for c in checks]
     r = snakemake(clone, "-n", "fig4")
     assert r.returncode == 0 and "Nothing to be done" in r.stdout + r.stderr
+
+
+# -- cluster profiles ----------------------------------------------------------------------------
+TINY_SWEEP = {
+    "description": "two parts, one per m00",
+    "axes": {"m00": [0.0625, 0.3125], "psi": [0.5]},
+    "s": {"start": 0.0, "stop": 2.0, "num": 3},
+    "fixed": {"m20": 8e-5, "m02": 8e-4, "m40": 1.04e-6, "m04": 1.04e-4, "E_star": 1.14e5},
+    "closure": "yield-from-psi",
+    "hertz": "exact",
+    "accuracy": "plot",
+    "split": {"axis": "m00", "jobs": 2},
+}
+
+
+def _clone_with_tiny_sweep(tmp_path):
+    clone = fresh_clone(tmp_path)
+    cfg = yaml.safe_load((clone / "config" / "config.yaml").read_text())
+    cfg["sweeps"] = {"tiny": TINY_SWEEP}
+    (clone / "config" / "config.yaml").write_text(yaml.safe_dump(cfg, sort_keys=False))
+    return clone
+
+
+def test_slurm_profile_plans_the_sweep_jobs(tmp_path):
+    clone = _clone_with_tiny_sweep(tmp_path)
+    r = snakemake(clone, "--profile", str(ROOT / "workflow/profiles/slurm"), "--workflow-profile", "none",
+                  "-n", "sweeps")
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert re.search(r"^sweep_part\s+2$", r.stdout + r.stderr, flags=re.M), r.stdout + r.stderr
+
+
+@pytest.mark.slow
+def test_sweep_dispatched_through_generic_cluster_executor(tmp_path):
+    """Each sweep part goes through the submit script (as through sbatch) and the merged
+    sweep equals a direct evaluation."""
+    import numpy as np
+
+    from roughcontact import io
+    from roughcontact.sweep import run_sweep, spec_from_config
+
+    clone = _clone_with_tiny_sweep(tmp_path)
+    env_path = f"{Path(sys.executable).parent}:{__import__('os').environ.get('PATH', '')}"
+    r = subprocess.run(
+        [*SNAKEMAKE, "--profile", "workflow/profiles/cluster-local", "--workflow-profile", "none", "sweeps"],
+        cwd=clone, capture_output=True, text=True, timeout=600, env={**__import__("os").environ, "PATH": env_path},
+    )
+    assert r.returncode == 0, r.stdout + r.stderr
+    submitted = (clone / ".snakemake/cluster-local/submissions.txt").read_text().splitlines()
+    assert len(submitted) == 2 and all("sweep_part" in line for line in submitted), submitted
+    merged = io.read_netcdf(clone / "results/sweeps/tiny.nc")
+    direct = run_sweep(spec_from_config(TINY_SWEEP, CONFIG["units"]))
+    for v in direct.data_vars:
+        np.testing.assert_array_equal(merged[v].values, direct[v].values, err_msg=v)
+    prov = io.read_provenance(merged)
+    assert prov["config"]["sweep"] == "tiny" and prov["roughcontact_version"]
+    assert merged["pressure"].attrs["units"] == CONFIG["units"]["stress"]

@@ -14,7 +14,7 @@ from typing import Iterator, Mapping, Sequence
 
 import numpy as np
 
-__all__ = ["STYLE", "style", "new_figure", "save", "fig3", "fig4"]
+__all__ = ["STYLE", "style", "new_figure", "save", "fig3", "fig4", "fig5", "fig6", "stiffness_vs_pressure", "stiffness_sensitivity"]
 
 #: rcParams of every figure of the project.
 STYLE: dict = {
@@ -131,5 +131,137 @@ def fig4(
         if title:
             ax.set_title(title)
         ax.legend(loc="upper left")
+        fig.tight_layout()
+    return fig
+
+
+def _color(i: int) -> str:
+    return _COLORS[i % len(_COLORS)]
+
+
+def _ordered_colors(n: int) -> list:
+    """n distinct colours for an ordered parameter (ψ): viridis without its pale yellow end."""
+    from matplotlib import colormaps
+
+    cmap = colormaps["viridis"]
+    return [cmap(x) for x in np.linspace(0.0, 0.85, max(n, 2))][:n]
+
+
+def _within(x, y, xlim):
+    """y with the points outside [xlim] masked (so the axes scale to what is shown)."""
+    x, y = np.asarray(x, float), np.asarray(y, float)
+    if xlim is None:
+        return x, y
+    keep = (x >= xlim[0] / 1.5) & (x <= xlim[1] * 1.5)
+    return x[keep], y[keep]
+
+
+def fig5(load: Mapping[str, Sequence[float]], plastic: Mapping[str, Sequence[float]],
+         yielded: Mapping[str, Sequence[float]], *, floor: float = 1e-6):
+    """Fig. 5: (a) the fully plastic part A^p/A (the captioned ordinate, eq. (81); log scale,
+    values below ``floor`` not drawn) and (b) the yielded part (A^ep + A^p)/A against the load
+    W/(H A0), one curve per label (ψ)."""
+    with style():
+        fig = new_figure(figsize=(10.0, 4.2))
+        ax1, ax2 = fig.add_subplot(1, 2, 1), fig.add_subplot(1, 2, 2)
+        colors = _ordered_colors(len(load))
+        for i, label in enumerate(load):
+            x = np.asarray(load[label], dtype=float)
+            yp = np.asarray(plastic[label], dtype=float)
+            ax1.plot(x, np.where(yp >= floor, yp, np.nan), color=colors[i], label=label)
+            ax2.plot(x, np.asarray(yielded[label], dtype=float), color=colors[i], label=label)
+        for ax in (ax1, ax2):
+            ax.set_xscale("log")
+            ax.set_xlabel(r"load $W/(H A_0)$")
+        ax1.set_yscale("log")
+        ax1.set_ylim(floor, 1.5)
+        ax1.set_ylabel(r"fully plastic part $A^p/A$ (eq. 81)")
+        ax1.set_title(f"(a) as captioned (values < {floor:g} not drawn)")
+        ax2.set_ylim(0.0, 1.0)
+        ax2.set_ylabel(r"yielded part $(A^{ep} + A^p)/A$")
+        ax2.set_title("(b) past first yield")
+        ax2.legend(loc="upper left", title=r"$\psi$")
+        fig.tight_layout()
+    return fig
+
+
+def fig6(load: Mapping[str, Sequence[float]], mean_pressure: Mapping[str, Sequence[float]],
+         levels: Mapping[str, float]):
+    """Fig. 6: the real mean pressure W/(A H) against the load W/(H A0), one curve per label
+    (ψ), with horizontal reference ``levels`` (label → value, e.g. the prose's 0.354, c_h)."""
+    with style():
+        fig = new_figure()
+        ax = fig.add_subplot(1, 1, 1)
+        colors = _ordered_colors(len(load))
+        for i, label in enumerate(load):
+            ax.plot(np.asarray(load[label], float), np.asarray(mean_pressure[label], float), color=colors[i], label=label)
+        values = sorted(levels.values())
+        for j, (name, value) in enumerate(levels.items()):
+            ax.axhline(value, color="0.35", linewidth=0.8, linestyle=(0, (1 + 2 * j, 2)))
+            # label above its line, unless the next level up is close: then below
+            close = any(0 < v - value < 0.06 for v in values)
+            ax.annotate(name, (1.0, value), xycoords=("axes fraction", "data"), xytext=(-4, -2 if close else 2),
+                        textcoords="offset points", ha="right", va="top" if close else "bottom",
+                        fontsize=8, color="0.3")
+        ax.set_xscale("log")
+        ax.set_ylim(0.0, 1.05)
+        ax.set_xlabel(r"load $W/(H A_0)$")
+        ax.set_ylabel(r"real mean pressure $W/(A H)$")
+        ax.legend(loc="upper left", title=r"$\psi$", ncol=2)
+        fig.tight_layout()
+    return fig
+
+
+_MARKERS_78 = ("^", "x", "s", "o", "v")
+
+
+def stiffness_vs_pressure(panels: Mapping[str, Mapping[str, tuple]], *, xlim=None):
+    """Figs 7–8: K/A0 against W/A0 (log–log). ``panels`` maps a panel title to {curve label:
+    (pressure_elastic, stiffness_elastic, pressure_ep, stiffness_ep)}: elastic solid,
+    elasto-plastic dashed, one colour and marker per curve (m00: triangles, crosses, squares
+    as in the paper)."""
+    n = len(panels)
+    with style():
+        fig = new_figure(figsize=(4.6 * n, 4.3))
+        for k, (title, curves) in enumerate(panels.items()):
+            ax = fig.add_subplot(1, n, k + 1)
+            for i, (label, (pe, ke, pp, kp)) in enumerate(curves.items()):
+                kw = dict(color=_color(i), marker=_MARKERS_78[i % len(_MARKERS_78)], markevery=6,
+                          markerfacecolor="none")
+                ax.plot(*_within(pe, ke, xlim), linestyle="-", label=f"{label}, elastic", **kw)
+                ax.plot(*_within(pp, kp, xlim), linestyle="--", label=f"{label}, elasto-plastic", **kw)
+            ax.set_xscale("log")
+            ax.set_yscale("log")
+            if xlim is not None:
+                ax.set_xlim(*xlim)
+            ax.set_xlabel(r"average pressure $W/A_0$")
+            ax.set_ylabel(r"normal stiffness $K/A_0$")
+            ax.set_title(title, fontsize=9)
+            if k == 0:
+                ax.legend(loc="upper left", fontsize=7)
+        fig.tight_layout()
+    return fig
+
+
+def stiffness_sensitivity(variants: Mapping[str, tuple], by_psi: Mapping[str, tuple], *, xlim=None):
+    """(a) elasto-plastic K/A0 against W/A0 for surface variants (label → (pressure,
+    stiffness)); (b) the same for several ψ (label → (pressure, stiffness)). Log–log."""
+    with style():
+        fig = new_figure(figsize=(10.0, 4.2))
+        for k, (title, curves) in enumerate((("(a) moments varied, m00 kept (and m00 doubled)", variants),
+                                             (r"(b) plasticity index $\psi$", by_psi))):
+            ax = fig.add_subplot(1, 2, k + 1)
+            colors = _ordered_colors(len(curves)) if k else [_color(i) for i in range(len(curves))]
+            for i, (label, (p, s)) in enumerate(curves.items()):
+                ax.plot(*_within(p, s, xlim), color=colors[i], linestyle=("-", "--")[k == 0 and i >= len(_COLORS)],
+                        label=label)
+            ax.set_xscale("log")
+            ax.set_yscale("log")
+            if xlim is not None:
+                ax.set_xlim(*xlim)
+            ax.set_xlabel(r"average pressure $W/A_0$")
+            ax.set_ylabel(r"normal stiffness $K/A_0$ (elasto-plastic)")
+            ax.set_title(title, fontsize=9)
+            ax.legend(loc="upper left", fontsize=7)
         fig.tight_layout()
     return fig

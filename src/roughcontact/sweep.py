@@ -27,7 +27,10 @@ import numpy as np
 from .closures import CLOSURES, DEFAULTS, default_closure, resolve_material
 from .surface import SpectralMoments
 
-__all__ = ["SweepSpec", "SWEEPABLE", "run_sweep", "split", "combine", "chunk_count"]
+__all__ = [
+    "SweepSpec", "SWEEPABLE", "run_sweep", "split", "combine", "chunk_count", "parameter_units",
+    "axis_values", "spec_from_config",
+]
 
 _MOMENTS = ("m00", "m20", "m02", "m40", "m04")
 _MATERIAL = ("psi", "Y", "E_star", "c_h", "wp_over_wc", "yield_coefficient")
@@ -49,7 +52,8 @@ _EP_FIELDS = (
 _ELASTIC_FIELDS = ("area_fraction", "pressure", "stiffness")
 
 
-def _param_units(length: str, stress: str) -> dict[str, str]:
+def parameter_units(length: str, stress: str) -> dict[str, str]:
+    """Units of the sweepable parameters (and of H, K_v) for the given length and stress units."""
     return {
         "m00": f"{length}^2", "m20": "1", "m02": "1", "m40": f"{length}^-2", "m04": f"{length}^-2",
         "psi": "1", "Y": stress, "E_star": stress, "c_h": "1", "wp_over_wc": "1",
@@ -189,7 +193,7 @@ def run_sweep(spec: SweepSpec, progress: Callable[[int, int], None] | None = Non
             progress(n, len(jobs))
 
     L, S = spec.units["length"], spec.units["stress"]
-    punits = _param_units(L, S)
+    punits = parameter_units(L, S)
     vunits = {
         "area_fraction": "1", "pressure": S, "stiffness": f"{S}/{L}", "stiffness_jump": f"{S}/{L}",
         "elastic_area_fraction": "1", "elastoplastic_area_fraction": "1", "plastic_area_fraction": "1",
@@ -254,3 +258,32 @@ def chunk_count(spec: SweepSpec, axis: str, points_per_job: int) -> int:
     """How many jobs of about ``points_per_job`` points the split along ``axis`` needs."""
     per_value = spec.points // spec.axes[axis].size
     return max(1, min(spec.axes[axis].size, math.ceil(spec.points / max(points_per_job, per_value))))
+
+
+def axis_values(axis) -> np.ndarray:
+    """Values of a configured axis: a list, or a grid {start, stop, num, spacing: linear|log}."""
+    if isinstance(axis, Mapping):
+        start, stop, num = float(axis["start"]), float(axis["stop"]), int(axis["num"])
+        spacing = axis.get("spacing", "linear")
+        if spacing == "linear":
+            return np.linspace(start, stop, num)
+        if spacing == "log":
+            if not (start > 0 and stop > 0):
+                raise ValueError(f"a log-spaced axis needs positive start and stop, got {start}, {stop}")
+            return np.geomspace(start, stop, num)
+        raise ValueError(f"axis spacing must be 'linear' or 'log', got {spacing!r}")
+    return np.atleast_1d(np.asarray(axis, dtype=float))
+
+
+def spec_from_config(cfg: Mapping, units: Mapping[str, str] | None = None) -> SweepSpec:
+    """A SweepSpec from a ``sweeps:`` entry of config/config.yaml (axes as lists or grids)."""
+    return SweepSpec(
+        axes={k: axis_values(v) for k, v in cfg["axes"].items()},
+        s=axis_values(cfg["s"]),
+        fixed=dict(cfg.get("fixed", {})),
+        closure=cfg.get("closure"),
+        hertz=cfg.get("hertz", "exact"),
+        accuracy=cfg.get("accuracy", "plot"),
+        with_elastic=bool(cfg.get("with_elastic", True)),
+        **({"units": dict(units)} if units else {}),
+    )

@@ -11,8 +11,17 @@ REFERENCE_DPS = int(config["reference_dps"])
 TABLE_SCENES = [name for name, sc in SCENES.items() if sc["kind"] == "table"]
 BEARING_SCENES = [name for name, sc in SCENES.items() if sc["kind"] == "bearing_ratio"]
 HERTZ_SCENES = [name for name, sc in SCENES.items() if sc["kind"] == "hertz_factors"]
-FIGURE_SCENES = BEARING_SCENES + HERTZ_SCENES
+# elasto-plastic scenes that compute their own curves (a scene with `uses:` draws another's)
+EP_KINDS = ("elastoplastic_psi", "stiffness_pressure", "stiffness_sensitivity")
+EP_SCENES = [name for name, sc in SCENES.items() if sc["kind"] in EP_KINDS and "uses" not in sc]
+FIGURE_SCENES = BEARING_SCENES + HERTZ_SCENES + [n for n, sc in SCENES.items() if sc["kind"] in EP_KINDS]
 MODEL_NAMES = list(config["models"])
+SWEEPS = config.get("sweeps", {})
+
+
+def curves_of(scene):
+    """The scene whose curves a figure scene draws: its own, or those it `uses`."""
+    return SCENES[scene].get("uses", scene)
 
 
 def _alternation(names):
@@ -83,7 +92,7 @@ def contact_job(scene, model, method, dps=None):
 
 # Keys of a scene that only affect reports, never computed numbers: editing them must not
 # re-run a computation (Snakemake's params trigger), least of all the mpmath reference.
-REPORT_ONLY_KEYS = {"title", "tolerances", "claims"}
+REPORT_ONLY_KEYS = {"title", "tolerances", "claims", "figure_closure", "pressure_range"}
 
 
 def compute_config(scene):
@@ -94,9 +103,19 @@ def compute_config(scene):
 def scene_provenance(scene):
     """The configuration slice a figure scene's curves depend on (stored as config_json)."""
     sc = compute_config(scene)
-    surfaces = [c["surface"] for c in sc.get("curves", [])]
+    surfaces = [c["surface"] for c in sc.get("curves", [])] + ([sc["surface"]] if "surface" in sc else [])
     return {
         "scene": scene,
         "scene_config": sc,
         "surfaces": {name: surface_of(name) for name in surfaces},
+        "units": dict(config["units"]),
     }
+
+
+def sweep_parts(name):
+    """The part files of a sweep: one Snakemake job per part (roughcontact.sweep.split)."""
+    from roughcontact.sweep import spec_from_config, split
+
+    cfg = SWEEPS[name]
+    n = len(split(spec_from_config(cfg, config["units"]), cfg["split"]["axis"], cfg["split"]["jobs"]))
+    return [f"results/sweeps/{name}/part-{i}.nc" for i in range(n)]

@@ -1,5 +1,6 @@
 # Figures: curves at plotting accuracy (results/curves/<scene>.nc), then the PNG, the data as
-# CSV and the prose-claim checks (results/verify/<scene>.checks.csv).
+# CSV and the prose-claim checks (results/verify/<scene>.checks.csv). A scene with `uses:`
+# (Fig. 6) is drawn from another scene's curves, computed once.
 
 
 rule curves_bearing_ratio:
@@ -43,10 +44,34 @@ rule curves_hertz_factors:
         "../scripts/curves_hertz_factors.py"
 
 
+rule curves_elastoplastic:
+    """Elasto-plastic curves of one scene (Figs 5-8, stiffness sensitivity): exactly the
+    surfaces, plasticity indices, closures and separations the scene declares."""
+    input:
+        lib=PHYSICS_SOURCES,
+    output:
+        "results/curves/{scene}.nc",
+    log:
+        "logs/curves/{scene}.log",
+    benchmark:
+        "results/benchmarks/curves/{scene}.tsv"
+    wildcard_constraints:
+        scene=_alternation(EP_SCENES),
+    params:
+        scene=lambda w: w.scene,
+        scene_config=lambda w: compute_config(w.scene),
+        surface=lambda w: surface_of(SCENES[w.scene]["surface"]),
+        units=dict(config["units"]),
+        provenance=lambda w: scene_provenance(w.scene),
+    threads: 2
+    script:
+        "../scripts/curves_elastoplastic.py"
+
+
 rule figure:
     """Plot a figure scene, export its data as CSV and check its prose claims."""
     input:
-        data="results/curves/{scene}.nc",
+        data=lambda w: f"results/curves/{curves_of(w.scene)}.nc",
         expected="config/expected_verdicts.yaml",
         code=REPORT_SOURCES,
     output:

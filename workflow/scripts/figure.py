@@ -6,7 +6,7 @@ from pathlib import Path
 
 import yaml
 
-from roughcontact import io, plots, verify
+from roughcontact import claims, io, plots, verify
 
 
 def _csv(header, columns):
@@ -46,10 +46,70 @@ def hertz_factors(scene, cfg, ds):
     return fig, _csv(header, columns), checks
 
 
+def _long_csv(ds, variables):
+    """The variables of ``ds`` in long form (one row per coordinate combination), full precision."""
+    return ds[list(variables)].to_dataframe().reset_index().to_csv(index=False, float_format="%.17g")
+
+
+def _claims(scene, cfg, ds):
+    defaults = {k: cfg[k] for k in ("pressure_range",) if k in cfg}
+    return [claims.evaluate(scene, {**defaults, **claim}, ds) for claim in cfg["claims"]]
+
+
+def elastoplastic_psi(scene, cfg, ds):
+    """Fig. 5 (plot: area_parts) or Fig. 6 (plot: mean_pressure) from the ψ-curves."""
+    labels = [f"{p:g}" for p in ds["psi"].values]
+    load = dict(zip(labels, claims.load_axis(ds)))
+    ds = ds.assign(load_W_over_HA0=(("psi", "s"), claims.load_axis(ds), {"units": "1"}))
+    if cfg["plot"] == "area_parts":
+        plastic, yielded = claims.fraction(ds, "plastic"), claims.fraction(ds, "yielded")
+        fig = plots.fig5(load, dict(zip(labels, plastic)), dict(zip(labels, yielded)))
+        ds = ds.assign(plastic_over_A=(("psi", "s"), plastic), yielded_over_A=(("psi", "s"), yielded))
+        table = _long_csv(ds, ["load_W_over_HA0", "plastic_over_A", "yielded_over_A", "area_fraction", "pressure"])
+    else:
+        ratio = claims.mean_pressure_over_H(ds)
+        K_Y, tabor, c_h = 1.62, 0.354, 0.967  # captions; (68); (66)
+        levels = {"0.354 (prose)": tabor, "(2/3) K Y/H = 0.382": 2 / 3 * K_Y * tabor, "c_h = 0.967": c_h}
+        fig = plots.fig6(load, dict(zip(labels, ratio)), levels)
+        ds = ds.assign(W_over_AH=(("psi", "s"), ratio))
+        table = _long_csv(ds, ["load_W_over_HA0", "W_over_AH", "area_fraction", "pressure"])
+    return fig, table, _claims(scene, cfg, ds)
+
+
+def stiffness_pressure(scene, cfg, ds):
+    """Figs 7–8: K/A0 vs W/A0, one panel per closure (the figure's closure first)."""
+    order = [cfg["figure_closure"]] + [c for c in ds["closure"].values if c != cfg["figure_closure"]]
+    panels = {}
+    for closure in order:
+        e = ds.sel(closure=closure)
+        psi_txt = ", ".join(f"{p:.2f}" for p in e["material_psi"].values)
+        title = f"{closure}" + (" (figure)" if closure == cfg["figure_closure"] else "") + f": psi = {psi_txt}"
+        panels[title] = {
+            f"m00 = {m:g}": (e["elastic_model_pressure"].values[i], e["elastic_model_stiffness"].values[i],
+                             e["pressure"].values[i], e["stiffness"].values[i])
+            for i, m in enumerate(e["m00"].values)
+        }
+    fig = plots.stiffness_vs_pressure(panels, xlim=tuple(cfg["pressure_range"]))
+    table = _long_csv(ds, ["pressure", "stiffness", "elastic_model_pressure", "elastic_model_stiffness"])
+    return fig, table, _claims(scene, cfg, ds)
+
+
+def stiffness_sensitivity(scene, cfg, ds):
+    variants = {str(v): (ds["pressure"].sel(variant=v).values, ds["stiffness"].sel(variant=v).values)
+                for v in ds["variant"].values}
+    by_psi = {f"psi = {p:g}": (ds["psi_pressure"].sel(psi=p).values, ds["psi_stiffness"].sel(psi=p).values)
+              for p in ds["psi"].values}
+    fig = plots.stiffness_sensitivity(variants, by_psi, xlim=tuple(cfg["pressure_range"]))
+    table = _long_csv(ds, ["pressure", "stiffness", "elastic_model_pressure", "elastic_model_stiffness"])
+    return fig, table, _claims(scene, cfg, ds)
+
+
 def run(scene, cfg, data, expected, out, log):
     with io.log_to(log) as logger:
         ds = io.read_netcdf(data)
-        make = {"bearing_ratio": bearing_ratio, "hertz_factors": hertz_factors}[cfg["kind"]]
+        make = {"bearing_ratio": bearing_ratio, "hertz_factors": hertz_factors,
+                "elastoplastic_psi": elastoplastic_psi, "stiffness_pressure": stiffness_pressure,
+                "stiffness_sensitivity": stiffness_sensitivity}[cfg["kind"]]
         fig, table, checks = make(scene, cfg, ds)
         checks = verify.apply_expectations(checks, yaml.safe_load(Path(expected).read_text()))
         for c in checks:
