@@ -4,7 +4,7 @@ eqs. (96)–(97) and Table 3 of Buczkowski & Kleiber (2009).
 References are independent of the module (which uses ellipse.elliptic_BD, i.e. scipy's Carlson
 R_D and the DLMF series):
 
-* the printed Table 3 (tests/data/table3.yaml, the digits as printed);
+* the printed Table 3 (config/paper_values.yaml, the digits as printed);
 * closed forms: the circle (2-ν)/(2(1-ν)), ν = 0, the reflection k(r) + k(1/r) = 2 + ν/(1-ν);
 * mpmath.quad of Mindlin's integrals: the centre displacement of the no-slip traction
   q ∝ (1 - x²/A² - y²/B²)^(-1/2) under Cerruti's kernel (one formula for both B < A and B > A);
@@ -24,7 +24,7 @@ import yaml
 
 from roughcontact.tangential import NU_MAX, NU_MIN, kn_over_kt
 
-TABLE3 = Path(__file__).parent / "data" / "table3.yaml"
+PAPER_VALUES = Path(__file__).resolve().parents[1] / "config" / "paper_values.yaml"
 
 
 # --- Table 3 -------------------------------------------------------------------------------
@@ -36,9 +36,13 @@ def _nu(text: str) -> float:
 
 
 def _table3():
-    data = yaml.safe_load(TABLE3.read_text())
-    nus = [_nu(t) for t in data["nu"]]
-    return data, nus
+    """The printed Table 3 as {"caption", "rows": [[label, cell(ν = 0), cell(¼), cell(½)], ...]}
+    and the ν of its columns (headed "nu = 0.0", "nu = 1/4", "nu = 1/2")."""
+    table = yaml.safe_load(PAPER_VALUES.read_text())["table3"]
+    columns = list(table["columns"])
+    nus = [_nu(c.split("=")[1].strip()) for c in columns]
+    rows = [[label, *(table["columns"][c]["kn_over_kt"][i] for c in columns)] for i, label in enumerate(table["rows"])]
+    return {"caption": " ".join(table["caption"].split()), "rows": rows}, nus
 
 
 def reading_decade(label: str) -> float:
@@ -56,7 +60,7 @@ def _cells(reading):
 
 def test_table3_file_is_the_printed_table():
     data, nus = _table3()
-    assert data["caption"] == "Ratio of k_N/k_T of bodies with the same elastic constants"
+    assert data["caption"] == "Table 3 Ratio of k_N/k_T of bodies with the same elastic constants"
     assert nus == [0.0, 0.25, 0.5]
     assert [row[0] for row in data["rows"]] == [
         "10.E-03", "10.E-02", "10.E-01", "10.E-00", "10.E+01", "10.E+02", "10.E+03"

@@ -13,7 +13,8 @@ from roughcontact.verify import NOT_REPRODUCED, REPRODUCED
 ROOT = Path(__file__).resolve().parents[1]
 
 PAPER = {
-    "s": ["1.0", "2.0"],
+    "rows": ["1.0", "2.0"],
+    "row_key": "s",
     "quantities": {
         "area_fraction": {"symbol": "A/A0", "unit": "%", "factor": 100.0},
         "pressure": {"symbol": "W/A0", "unit": "N/mm^2", "factor": 1.0},
@@ -173,7 +174,7 @@ def test_reports_render():
         "bgk": {"area_fraction": [0.0577, 0.0000850], "pressure": [93.15, 0.1159]},
     }
     checks = verify.table_cell_checks("t1", PAPER, results, MODELS, TOL)
-    checks += verify.numerics_checks("t1", PAPER["s"], results, results, 1e-8)
+    checks += verify.numerics_checks("t1", PAPER["rows"], results, results, 1e-8)
     expected = yaml.safe_load((ROOT / "config" / "expected_verdicts.yaml").read_text())
     checks = verify.apply_expectations(checks, expected)
     md = verify.render_table_markdown("Table X", checks, PAPER, MODELS, provenance={"commit": "abc"})

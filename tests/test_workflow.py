@@ -66,11 +66,16 @@ def test_schema_rejects_bad_configs(mutate, message):
 
 def test_scenes_refer_to_defined_surfaces_models_and_printed_rows():
     for name, scene in CONFIG["scenes"].items():
+        if scene["kind"] == "mindlin_table":
+            printed = PAPER[name]
+            assert len(printed["rows"]) == len(scene[printed["row_key"]])
+            assert {c["paper_column"] for c in scene["columns"].values()} == set(printed["columns"])
         if scene["kind"] == "table":
             assert scene["surface"] in CONFIG["surfaces"]
             assert set(scene["models"]) <= set(CONFIG["models"])
             printed = PAPER[name]
-            assert [float(x) for x in printed["s"]] == [float(x) for x in scene["s"]]
+            assert printed["row_key"] == "s"
+            assert [float(x) for x in printed["rows"]] == [float(x) for x in scene["s"]]
             assert printed["surface"] == CONFIG["surfaces"][scene["surface"]]
             assert float(printed["E_star"]) == scene["E_star"]
             for model in scene["models"]:
@@ -83,7 +88,7 @@ def test_scenes_refer_to_defined_surfaces_models_and_printed_rows():
 
 
 def test_paper_values_are_printed_strings():
-    for table in ("table1", "table2"):
+    for table in ("table1", "table2", "table3"):
         for column in PAPER[table]["columns"].values():
             for values in column.values():
                 assert all(isinstance(v, str) and float(v) > 0 for v in values)

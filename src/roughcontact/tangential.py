@@ -46,7 +46,7 @@ e.g. 1.000961 at B²/A² = 1e-300, ν = 1/4.
 Table 3 reading: the first column "10.E-03", …, "10.E+03" means B²/A² = 10⁻³, …, 10³ (one
 decade per row, "10.E-00" the circle). With this reading (96a)/(96b) reproduce all 21 printed
 cells to within one unit of the last printed digit (max relative deviation 5.0e-6;
-tests/test_tangential.py, tests/data/table3.yaml). Three cells are truncated rather than
+tests/test_tangential.py; the printed digits in config/paper_values.yaml). Three cells are truncated rather than
 rounded (10.E-01: 1.12167 for 1.1216756, 1.36502 for 1.3650268; 10.E+02, ν = 1/4: 1.24413 for
 1.2441357); the other 18 are correctly rounded. The readings B²/A² = 10 × 10^k and
 B/A = 10^k miss by > 1e-2.

@@ -169,12 +169,12 @@ def _tol_text(x: float) -> str:
 # ---------------------------------------------------------------------------------------
 # building checks
 # ---------------------------------------------------------------------------------------
-def cell_id(scene: str, model: str, quantity: str, s: str) -> str:
-    return f"cell:{scene}/{model}/{quantity}/s={s}"
+def cell_id(scene: str, model: str, quantity: str, row: str, row_key: str = "s") -> str:
+    return f"cell:{scene}/{model}/{quantity}/{row_key}={row}"
 
 
-def numerics_id(scene: str, model: str, quantity: str, s: str) -> str:
-    return f"numerics:{scene}/{model}/{quantity}/s={s}"
+def numerics_id(scene: str, model: str, quantity: str, row: str, row_key: str = "s") -> str:
+    return f"numerics:{scene}/{model}/{quantity}/{row_key}={row}"
 
 
 def claim_id(scene: str, claim: str) -> str:
@@ -191,13 +191,15 @@ def table_cell_checks(
 ) -> list[Check]:
     """One check per (model, quantity, printed row).
 
-    paper_table  an entry of config/paper_values.yaml: ``s`` (printed strings), ``quantities``
-                 (unit, factor library → printed unit), ``columns`` (printed strings).
-    results      {model name: {quantity: values at the printed s, in library units}}.
+    paper_table  an entry of config/paper_values.yaml: ``rows`` (printed row labels),
+                 ``row_key`` (their name in the check ids), ``quantities`` (unit, factor
+                 library → printed unit), ``columns`` (printed strings).
+    results      {model name: {quantity: values at the printed rows, in library units}}.
     models       {model name: config entry with ``paper_column`` and ``label``}.
     tolerances   the scene's tolerances: {model: {quantity: {rtol, why}}, printed_rounding}.
     """
-    s_printed = [str(x) for x in paper_table["s"]]
+    s_printed = [str(x) for x in paper_table["rows"]]
+    row_key = paper_table.get("row_key", "s")
     rounding = bool(tolerances.get("printed_rounding", False))
     out: list[Check] = []
     for model, per_quantity in results.items():
@@ -226,7 +228,7 @@ def table_cell_checks(
                 )
                 out.append(
                     Check(
-                        id=cell_id(scene, model, quantity, s),
+                        id=cell_id(scene, model, quantity, s, row_key),
                         kind="cell",
                         scene=scene,
                         verdict=verdict,
@@ -255,6 +257,7 @@ def numerics_checks(
     rtol: float,
     quantities: Sequence[str] | None = None,
     reference_dps: int | None = None,
+    row_key: str = "s",
 ) -> list[Check]:
     """Production (numba) vs reference (mpmath) at every table cell: |rel. diff| ≤ rtol."""
     out: list[Check] = []
@@ -270,7 +273,7 @@ def numerics_checks(
                 verdict = _judge(err, rtol)
                 out.append(
                     Check(
-                        id=numerics_id(scene, model, quantity, str(s)),
+                        id=numerics_id(scene, model, quantity, str(s), row_key),
                         kind="numerics",
                         scene=scene,
                         verdict=verdict,
@@ -509,9 +512,9 @@ def render_table_markdown(
             "",
         ]
     lines += [
-        "Ours: production quadrature (numba). *ref. diff*: |production − mpmath reference|/reference "
-        "(required ≤ 1e-8). *tol.*: relative tolerance from config/config.yaml, widened to half a "
-        "unit of the printed last digit where that is larger.",
+        "*ref. diff*: |production − mpmath reference|/reference (required ≤ 1e-8; – where the "
+        "table has no reference). *tol.*: relative tolerance from config/config.yaml, widened to "
+        "half a unit of the printed last digit where that is larger and the scene asks for it.",
         "",
     ]
     for quantity, qinfo in paper_table["quantities"].items():
@@ -532,7 +535,7 @@ def render_table_markdown(
                     "",
                 ]
             lines += [
-                "| h/m00^1/2 | paper | ours | rel. error | tol. | verdict | status | ref. diff |",
+                f"| {paper_table.get('row_label', 'h/m00^1/2')} | paper | ours | rel. error | tol. | verdict | status | ref. diff |",
                 "|---:|---:|---:|---:|---:|---|---|---:|",
             ]
             for c in group:

@@ -9,6 +9,8 @@ SCENES = config["scenes"]
 REFERENCE_DPS = int(config["reference_dps"])
 
 TABLE_SCENES = [name for name, sc in SCENES.items() if sc["kind"] == "table"]
+MINDLIN_SCENES = [name for name, sc in SCENES.items() if sc["kind"] == "mindlin_table"]
+PRINTED_TABLES = TABLE_SCENES + MINDLIN_SCENES  # scenes compared cell by cell with a printed table
 BEARING_SCENES = [name for name, sc in SCENES.items() if sc["kind"] == "bearing_ratio"]
 HERTZ_SCENES = [name for name, sc in SCENES.items() if sc["kind"] == "hertz_factors"]
 # elasto-plastic scenes that compute their own curves (a scene with `uses:` draws another's)
@@ -48,7 +50,7 @@ REPORT_SOURCES = [
 def scene_targets():
     """The user-facing files of every scene: tables (md, csv) and figures (png, csv)."""
     out = []
-    for name in TABLE_SCENES:
+    for name in PRINTED_TABLES:
         out += [f"paper_figures/{name}.md", f"paper_figures/{name}.csv"]
     for name in FIGURE_SCENES:
         out += [f"paper_figures/{name}.png", f"paper_figures/{name}.csv"]
@@ -57,7 +59,16 @@ def scene_targets():
 
 def scene_checks():
     """The per-scene verification rows collected by VERIFICATION.md."""
-    return [f"results/verify/{name}.checks.csv" for name in TABLE_SCENES + FIGURE_SCENES]
+    return [f"results/verify/{name}.checks.csv" for name in PRINTED_TABLES + FIGURE_SCENES]
+
+
+def table_columns(scene):
+    """{column name: {paper_column, label, ...}} of a printed-table scene: its model levels
+    (Tables 1-2) or its own columns (Table 3)."""
+    sc = SCENES[scene]
+    if sc["kind"] == "mindlin_table":
+        return dict(sc["columns"])
+    return {m: config["models"][m] for m in sc["models"]}
 
 
 def surface_of(name):

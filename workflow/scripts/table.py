@@ -21,8 +21,12 @@ def _values(paths):
 def run(scene, scene_config, models, numerics_rtol, reference_dps, production, reference, paper, expected, out, log):
     with io.log_to(log) as logger:
         paper_table = yaml.safe_load(Path(paper).read_text())[scene]
-        if [float(x) for x in paper_table["s"]] != [float(x) for x in scene_config["s"]]:
-            raise ValueError(f"{scene}: config s {scene_config['s']} differ from the printed rows {paper_table['s']}")
+        # the scene's row values (its s, or its reading of the printed labels) match the rows
+        key = paper_table.get("row_key", "s")
+        configured = [float(x) for x in scene_config[key]]
+        printed_rows = paper_table["rows"]
+        if len(configured) != len(printed_rows) or (key == "s" and configured != [float(x) for x in printed_rows]):
+            raise ValueError(f"{scene}: configured {key} {configured} do not match the printed rows {printed_rows}")
         prod = _values(production)
         ref = _values(reference) if reference else {}
         provenance = next(iter(prod.values()))["_provenance"]
@@ -35,7 +39,8 @@ def run(scene, scene_config, models, numerics_rtol, reference_dps, production, r
         )
         if ref:
             checks += verify.numerics_checks(
-                scene, paper_table["s"], prod, ref, numerics_rtol, quantities, reference_dps
+                scene, paper_table["rows"], prod, ref, numerics_rtol, quantities, reference_dps,
+                paper_table.get("row_key", "s"),
             )
         checks = verify.apply_expectations(checks, yaml.safe_load(Path(expected).read_text()))
         for c in checks:
