@@ -9,7 +9,9 @@ import math
 import numpy as np
 import pytest
 
+from roughcontact import SpectralMoments
 from roughcontact import friction as fr
+from roughcontact.interface import InterfaceLaw, NormalLawTable
 
 KN, KTX, KTY = 100.0, 70.0, 90.0
 UN0 = 0.05  # closure -> p_N = 5 N/mm²
@@ -29,12 +31,16 @@ def upd(model, state, du, kN=KN, kTx=KTX, kTy=KTY):
     return fr.update(model, state, np.asarray(du, float), kN, kTx, kTy)
 
 
-def fd_tangent(model, state, du, h=1e-7):
+def fd_tangent(model, state, du, h=1e-7, law=None):
+    """Central differences of the updated tractions (constant stiffnesses or ``law``)."""
+    def tractions(d):
+        return (upd(model, state, d) if law is None else fr.update(model, state, d, law)).tractions
+
     D = np.zeros((3, 3))
     for j in range(3):
         e = np.zeros(3)
         e[j] = h
-        D[:, j] = (upd(model, state, du + e).tractions - upd(model, state, du - e).tractions) / (2 * h)
+        D[:, j] = (tractions(du + e) - tractions(du - e)) / (2 * h)
     return D
 
 
@@ -408,17 +414,22 @@ def test_tangent_at_zero_trial_component_is_one_sided_average():
     assert errs[1] < 1e-6 and errs[0] / errs[1] == pytest.approx(100, rel=0.01)
 
 
+def assert_kernel_matches_twin(model, s, du, *stiffness, d_scale):
+    """The numba update equals reference_update (state to 1e-12 per group, D to 1e-12 of
+    max(|D|, d_scale)); returns the status."""
+    r = fr.update(model, s, du, *stiffness)
+    s_ref, D_ref, st = fr.reference_update(model, s, du, *stiffness)
+    assert st == r.status
+    for sl in (slice(0, 3), slice(3, 4), slice(4, 6), slice(6, 8), slice(8, 9)):
+        sc = max(np.abs(s_ref[sl]).max(), 1e-300)
+        assert np.abs(r.state[sl] - s_ref[sl]).max() <= 1e-12 * sc, (model, sl)
+    assert np.abs(r.D - D_ref).max() <= 1e-12 * max(np.abs(D_ref).max(), d_scale)
+    return st
+
+
 def test_kernel_matches_reference_twin():
-    statuses = set()
-    for model, s, du in twin_cases():
-        r = upd(model, s, du)
-        s_ref, D_ref, st = fr.reference_update(model, s, du, KN, KTX, KTY)
-        statuses.add(st)
-        assert st == r.status
-        for sl in (slice(0, 3), slice(3, 4), slice(4, 6), slice(6, 8), slice(8, 9)):
-            sc = max(np.abs(s_ref[sl]).max(), 1e-300)
-            assert np.abs(r.state[sl] - s_ref[sl]).max() <= 1e-12 * sc, (model, sl)
-        assert np.abs(r.D - D_ref).max() <= 1e-12 * max(np.abs(D_ref).max(), KN)
+    statuses = {assert_kernel_matches_twin(model, s, du, KN, KTX, KTY, d_scale=KN)
+                for model, s, du in twin_cases()}
     assert statuses == {fr.STICK, fr.SLIP, fr.OPEN}
 
 
@@ -497,3 +508,108 @@ def test_fig18_presets():
     assert fr.slip_angle(dup) == pytest.approx(fr.traction_angle(r.state[:2]), abs=1e-12)
     with pytest.raises(ValueError):
         fr.fig18_preset("d", 100.0)
+
+
+# ---------------------------------------------------------------------------------------------
+# tabulated normal law (interface.InterfaceLaw): p_N(u_N), k_N(u_N) and k_T = a k_N(u_N) at the
+# end of the step
+# ---------------------------------------------------------------------------------------------
+A_X, A_Y = 0.7, 0.9  # k_Tx/k_N (section 9.2's 0.7), k_Ty/k_N
+
+
+@pytest.fixture(scope="module")
+def law():
+    """Elastic table of the Table 1 surface (preset "plot": these tests need a smooth law, not
+    its accuracy — tests/test_interface.py checks that), reference state p0 = P0."""
+    surface = SpectralMoments(0.0625, 8e-5, 8e-4, 1.04e-6, 1.04e-4)
+    table = NormalLawTable.build(surface, "elastic", E_star=1.14e5, s_range=(1.5, 4.5), accuracy="plot")
+    return InterfaceLaw.from_pressure(table, P0, kT_over_kN=(A_X, A_Y))
+
+
+def law_scales(law):
+    """Elastic-limit tangential displacement at p0 and a closure step that changes p_N by ~40 %."""
+    k0 = law.normal(0.0)[1]
+    return 0.3 * 0.6 * P0 / (A_X * k0), 0.4 * P0 / k0
+
+
+def preloaded_law(model, law):
+    dlim, dun = law_scales(law)
+    s = fr.initial_state(u_N=0.0, k_N=law)
+    for du in ([6 * dlim, 8 * dlim, 0.5 * dun], [-16 * dlim, 2 * dlim, -0.3 * dun]):
+        s = fr.update(model, s, du, law).state
+    return s
+
+
+@pytest.mark.parametrize("name", list(MODELS))
+@pytest.mark.parametrize("start", ["reference", "preloaded"])
+def test_table_tangent_matches_finite_differences(name, start, law):
+    """Consistent tangent with p_N(u_N), k_N(u_N) and k_T(u_N) from the table, in stick and
+    slip, closing and opening increments: ≤ 1e-6 against central differences."""
+    model = MODELS[name]
+    dlim, dun = law_scales(law)
+    s = fr.initial_state(u_N=0.0, k_N=law) if start == "reference" else preloaded_law(model, law)
+    t_scale = np.r_[s[:2] / np.array([A_X, A_Y]), 0.0] / law.normal(s[fr.U_N])[1]
+    cases = [(fr.SLIP, np.array(du) * [dlim, dlim, dun]) for du in
+             ([3.0, -5.0, 0.4], [-6.0, 1.0, -0.3], [0.1, 7.0, 0.2], [-200.0, -150.0, 0.0])]
+    cases += [(fr.STICK, np.array([0.2 * dlim, 0.1 * dlim, sign * 0.3 * dun]) - 0.3 * t_scale)
+              for sign in (1.0, -1.0)]
+    for expected, du in cases:
+        r = fr.update(model, s, du, law)
+        assert r.status == expected, (du, r.status)
+        err = np.abs(r.D - fd_tangent(model, s, du, law=law)).max() / np.abs(r.D).max()
+        assert err <= 1e-6, (du, err)
+        p, k_N = law.normal(r.state[fr.U_N])
+        assert r.state[fr.T_N] == p and r.D[2, 2] == k_N and r.D[2, 0] == r.D[2, 1] == 0.0
+        if du[2] != 0.0:  # k_T follows k_N: the tangential tractions depend on u_N
+            assert np.abs(r.D[:2, 2]).max() > 1e-3 * np.abs(r.D).max()
+
+
+def test_table_stick_stiffness_follows_kN(law):
+    dlim, dun = law_scales(law)
+    s = fr.initial_state(u_N=0.0, k_N=law)
+    for du_n in (-0.5 * dun, 0.0, 0.7 * dun):
+        r = fr.update(ISO, s, [0.1 * dlim, -0.2 * dlim, du_n], law)
+        assert r.status == fr.STICK
+        kTx, kTy = law.tangential(du_n)
+        assert r.D[0, 0] == kTx and r.D[1, 1] == kTy
+        np.testing.assert_allclose(r.state[:2], [kTx * 0.1 * dlim, -kTy * 0.2 * dlim], rtol=1e-15)
+
+
+@pytest.mark.parametrize("name", list(MODELS))
+def test_table_tractions_stay_on_limit_surface(name, law):
+    model = MODELS[name]
+    dlim, dun = law_scales(law)
+    rng = np.random.default_rng(6)
+    s = fr.initial_state(64, u_N=0.0, k_N=law)
+    nslip = nopen = 0
+    for step in range(30):
+        du = random_path(rng, 64, dlim)
+        # closure steps up to ±dun, kept inside the table's heavy end; 8 points opened once
+        du[:, 2] = np.minimum(rng.uniform(-1.0, 1.0, 64) * dun, 0.8 * law.u_max - s[:, fr.U_N])
+        if step == 10:
+            du[:8, 2] = law.u_open - 0.5 * dun - s[:8, fr.U_N]
+        r = fr.update(model, s, du, law)
+        f = fr.limit_function(model, r.state)
+        stick, slip = r.status == fr.STICK, r.status == fr.SLIP
+        nslip += slip.sum()
+        nopen += (r.status == fr.OPEN).sum()
+        assert np.all(f[stick] <= 1e-12 * r.state[stick, fr.T_N])
+        assert np.all(np.abs(f[slip]) <= 1e-13 * r.state[slip, fr.T_N])
+        np.testing.assert_array_equal(r.state[:, fr.T_N], law.normal(r.state[:, fr.U_N])[0])
+        s = r.state
+    assert nslip > 300 and nopen > 0
+
+
+def test_table_kernel_matches_reference_twin(law):
+    dlim, dun = law_scales(law)
+    rng = np.random.default_rng(7)
+    statuses = set()
+    for i, model in enumerate([ORTHO, ORTHO_K1, ORTHO_K0, ISO] * 6):
+        s = fr.initial_state(u_N=0.0, k_N=law)
+        for du in random_path(rng, 3, dlim):
+            du[2] = rng.uniform(-0.5, 0.5) * dun
+            s = fr.update(model, s, du, law).state
+        du = random_path(rng, 1, dlim)[0]
+        du[2] = rng.uniform(-0.5, 0.5) * dun if i % 8 != 7 else law.u_open - s[fr.U_N] - 0.01
+        statuses.add(assert_kernel_matches_twin(model, s, du, law, d_scale=1.0))
+    assert statuses == {fr.STICK, fr.SLIP, fr.OPEN}

@@ -26,23 +26,38 @@ Isotropic hardening (8.2), :class:`IsotropicHardening`: f = |t_T| - μ_F p_N (12
 circular potential g = |t_T| - C (121): Δu_T^p = γ t_T/|t_T|. The paper's "β" (initial
 coefficient ratio) is called ``mu_o`` here (the paper also uses β for the traction angle).
 
-Elastic part (93)-(94): Δt = diag(k_Tx, k_Ty, k_N) Δu^e, k's per unit area, constant inputs.
+Elastic part (93)-(94): Δt = diag(k_Tx, k_Ty, k_N) Δu^e, k's per unit area: constant inputs or
+from the tabulated normal law (next section).
 
-Normal contact and sign convention (the one place: :func:`normal_law`)
-----------------------------------------------------------------------
+Normal contact, sign convention and reference state (the one place: :func:`normal_law`)
+-------------------------------------------------------------------------------------
 u_N is the normal *closure* (approach, penetration) of the interface: positive closes it.
 The normal traction stored and returned is the contact *pressure* p_N = t_N ≥ 0, positive in
-compression (the paper's t_N in (91), (117), (120)). With the constant stiffness used here
-p_N = k_N · max(u_N, 0) (the total-displacement form of (117); contact for u_N > 0). For
-u_N ≤ 0 the contact is open: p_N = 0, t_T = 0, D = 0, plastic slips and hardening frozen
-(tangential motion of separated faces is neither elastic nor frictional slip). The
-tabulated normal law replaces :func:`normal_law` later. An engine that uses the gap g = -u_N
-(positive open) and a tension-positive normal stress σ_N = -p_N passes Δu_N = -Δg and uses
-σ_N = -state[..., T_N] and S·D·S with S = diag(1, 1, -1).
+compression (the paper's t_N in (91), (117), (120)). p_N and k_N = dp_N/du_N are taken at the
+end of the step, u_N = u_N,n + Δu_N (the total form of (117)), from one of two normal laws:
+
+* constant stiffness (``k_N`` a number): p_N = k_N · max(u_N, 0); u_N = 0 is first touch;
+  k_Tx, k_Ty are given constants.
+* tabulated statistical law (``k_N`` a :class:`roughcontact.interface.InterfaceLaw`):
+  p_N = W(h)/A0 and k_N = K/A0 = -d(W/A0)/dh of the elastic (53), (55)/(95) or elasto-plastic
+  (82) model, with u_N = h_ref - h measured from the *reference state* h_ref, the separation
+  at which the interface carries the initial pressure p0 (the paper applies an initial load
+  first, 9.1): u_N = 0 ↔ p_N = p0 > 0, u_N < 0 unloads towards the light end, open (p_N = 0)
+  for u_N ≤ u_open (the table's light-end tail, docs/interface.md); a closure beyond the
+  table's heavy end raises ValueError. k_Tx = a_x k_N(u_N), k_Ty = a_y k_N(u_N) with the law's
+  factors a = k_T/k_N, also at the end of the step: the trial traction is
+  t^tr = t_n + K_T(u_N) Δu_T (incremental (93)) and the consistent tangent carries
+  ∂K_T/∂u_N = a d²p_N/du_N² besides ∂p_N/∂u_N = k_N in the friction limit.
+
+For p_N = 0 the contact is open: p_N = 0, t_T = 0, D = 0, plastic slips and hardening frozen
+(tangential motion of separated faces is neither elastic nor frictional slip). An engine that
+uses the gap g = -u_N (positive open) and a tension-positive normal stress σ_N = -p_N passes
+Δu_N = -Δg and uses σ_N = -state[..., T_N] and S·D·S with S = diag(1, 1, -1).
 
 Python interface
 ----------------
-``update(model, state, du, k_N, k_Tx, k_Ty)`` -> :class:`FrictionUpdate` ``(state, D, status)``
+``update(model, state, du, k_N, k_Tx, k_Ty)`` or ``update(model, state, du, law)``
+-> :class:`FrictionUpdate` ``(state, D, status)``
 
 * ``state``: float array (..., NSTATE = 9), one row per integration point (or shape (9,)),
   columns (named index constants):
@@ -61,7 +76,9 @@ Python interface
   :func:`initial_state` builds a virgin state (optionally pre-compressed).
 * ``du``: (..., 3) increment of the relative displacement (Δu_Tx, Δu_Ty, Δu_N) [length].
 * ``k_N, k_Tx, k_Ty``: stiffnesses per unit area [stress/length], scalars or arrays
-  broadcastable to the point shape, finite and > 0.
+  broadcastable to the point shape, finite and > 0; or ``law`` (in place of ``k_N``, without
+  k_Tx, k_Ty): an :class:`roughcontact.interface.InterfaceLaw` (tabulated p_N(u_N), k_N(u_N)
+  and k_T = a k_N).
 * returns the new state (same shape; the tractions are ``state[..., :3]``), the consistent
   (algorithmic) tangent ``D`` (..., 3, 3) with D_ij = ∂(t_x, t_y, p_N)_i/∂(Δu_Tx, Δu_Ty, Δu_N)_j,
   and ``status`` (...,) int8: STICK = 0, SLIP = 1, OPEN = 2.
@@ -71,7 +88,8 @@ N/(mm²·µm) (the project's K/A0); n_x, n_y, n in 1/[length] (275 /mm = 0.275 /
 
 Algorithm
 ---------
-Elastic predictor t^tr = t_n + K_T Δu_T; if f(t^tr, κ_n, p_N,n+1) ≤ 0: stick, D = D^e (94).
+Elastic predictor t^tr = t_n + K_T Δu_T; if f(t^tr, κ_n, p_N,n+1) ≤ 0: stick, D = D^e (94)
+(plus ∂K_T/∂u_N Δu_T in the u_N column with a tabulated law).
 Otherwise backward Euler (implicit) return mapping: t = t^tr - K_T Δu^p with Δu^p, κ and the
 potential ratio all evaluated at the end of the step, so that f(t, κ, p) = 0 holds to machine
 precision for any increment size. Writing Δu_i^p = λ w_i t_i (w_x = ρ, w_y = 1/ρ,
@@ -123,6 +141,8 @@ from typing import NamedTuple
 import numba
 import numpy as np
 
+from .interface import InterfaceLaw, closure_law, reference_closure_law
+
 __all__ = [
     "NSTATE", "T_X", "T_Y", "T_N", "U_N", "UP_X", "UP_Y", "KAPPA_X", "KAPPA_Y", "KAPPA",
     "DISSIPATION", "STICK", "SLIP", "OPEN",
@@ -142,6 +162,7 @@ KAPPA = KAPPA_X  # isotropic model: accumulated slip length
 
 STICK, SLIP, OPEN = 0, 1, 2
 _FAILED = -1
+_BEYOND = -2  # closure beyond the heavy end of a tabulated normal law
 
 _MAXIT = 200
 
@@ -224,12 +245,16 @@ def _mu_np(mu_m, mu_o, n, kappa):
 # numba building blocks
 # ---------------------------------------------------------------------------------------------
 @numba.njit(cache=True)
-def _normal_law(u_n, k_n):
-    """THE sign convention: u_N = closure (> 0 compresses), p_N ≥ 0 pressure.
-    Returns (p_N, dp_N/du_N); total form of eq. (117) with constant k_N; open for u_N ≤ 0."""
+def _normal_law(u_n, k_n, tab, h_ref):
+    """THE sign convention (module docstring): u_N = closure (> 0 compresses), p_N ≥ 0 pressure.
+    Returns (p_N, dp_N/du_N, d²p_N/du_N², beyond). Empty ``tab``: total form of eq. (117) with
+    constant k_N, open for u_N ≤ 0; otherwise the tabulated law (interface.closure_law) with
+    u_N measured from the reference separation h_ref."""
+    if tab.shape[0] > 0:
+        return closure_law(u_n, h_ref, tab)
     if u_n > 0.0:
-        return k_n * u_n, k_n
-    return 0.0, 0.0
+        return k_n * u_n, k_n, 0.0, False
+    return 0.0, 0.0, 0.0, False
 
 
 @numba.njit(cache=True)
@@ -254,13 +279,14 @@ _E_TX, _E_TY, _E_KX, _E_KY, _E_WX, _E_WY, _E_CX, _E_CY = 0, 1, 2, 3, 4, 5, 6, 7
 _E_S, _E_PHI, _E_S_LAM, _E_S_R, _E_S_TTX, _E_S_TTY = 8, 9, 10, 11, 12, 13
 _E_PHI_LAM, _E_PHI_R, _E_PHI_TTX, _E_PHI_TTY = 14, 15, 16, 17
 _E_TX_LAM, _E_TX_R, _E_TY_LAM, _E_TY_R = 18, 19, 20, 21
-_NE = 22
+_E_S_KTX, _E_S_KTY, _E_PHI_KTX, _E_PHI_KTY, _E_TX_KTX, _E_TY_KTY = 22, 23, 24, 25, 26, 27
+_NE = 28
 
 
 @numba.njit(cache=True)
 def _ortho_eval(lam, r, ttx, tty, ktx, kty, kxn, kyn, par, out):
     """Backward-Euler state at (λ, r) and the partial derivatives of F = S - p and
-    Φ = r - k ln(μ_y/μ_x) with respect to λ, r and the trial tractions."""
+    Φ = r - k ln(μ_y/μ_x) with respect to λ, r, the trial tractions and k_Tx, k_Ty."""
     wx = math.exp(r)
     wy = math.exp(-r)
     cx = 1.0 / (1.0 + ktx * lam * wx)
@@ -323,6 +349,19 @@ def _ortho_eval(lam, r, ttx, tty, ktx, kty, kxn, kyn, par, out):
     out[_E_TX_R] = tx_r
     out[_E_TY_LAM] = ty_lam
     out[_E_TY_R] = ty_r
+    # k_T-derivatives at fixed (λ, r, t^tr): needed when k_T follows k_N(u_N)
+    cx_k = -lam * wx * cx * cx
+    cy_k = -lam * wy * cy * cy
+    tx_k = ttx * cx_k
+    ty_k = tty * cy_k
+    kx_k = ax * lam * wx * cx_k
+    ky_k = ay * lam * wy * cy_k
+    out[_E_S_KTX] = gx * (tx_k - tx * hx * kx_k)
+    out[_E_S_KTY] = gy * (ty_k - ty * hy * ky_k)
+    out[_E_PHI_KTX] = ke * hx * kx_k
+    out[_E_PHI_KTY] = -ke * hy * ky_k
+    out[_E_TX_KTX] = tx_k
+    out[_E_TY_KTY] = ty_k
 
 
 @numba.njit(cache=True)
@@ -376,43 +415,83 @@ def _ortho_solve_r(lam, r0, ttx, tty, ktx, kty, kxn, kyn, par, wk, tol):
 
 
 @numba.njit(cache=True)
-def _begin_update(ktx, kty, kn, s_old, du, s_new, D):
-    """Shared start of both updates: copy the state, zero D, apply the normal law; for a
-    closed contact return the elastic (trial) tangential tractions, eq. (93)-(94)."""
+def _begin_update(stiff, s_old, du, s_new, D, tab, h_ref):
+    """Shared start of both updates: copy the state, zero D, apply the normal law and the
+    tangential stiffnesses at the end of the step; for a closed contact the elastic (trial)
+    tangential tractions, eq. (93)-(94). ``stiff`` = (k_Tx, k_Ty, k_N) for the constant law,
+    (k_Tx/k_N, k_Ty/k_N, unused) with a table (k_T = a k_N(u_N)).
+    Returns (status, p, dp, ttx, tty, ktx, kty, dktx, dkty) with d = d/du_N and status
+    OPEN, _BEYOND or STICK (= closed, to be decided)."""
     for j in range(NSTATE):
         s_new[j] = s_old[j]
     for a in range(3):
         for b in range(3):
             D[a, b] = 0.0
     u_n = s_old[U_N] + du[2]
-    p, dp = _normal_law(u_n, kn)
+    p, dp, ddp, beyond = _normal_law(u_n, stiff[2], tab, h_ref)
     s_new[U_N] = u_n
     s_new[T_N] = p
+    if beyond:
+        return _BEYOND, p, dp, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     if p <= 0.0:
         s_new[T_X] = 0.0
         s_new[T_Y] = 0.0
-        return True, p, dp, 0.0, 0.0
-    return False, p, dp, s_old[T_X] + ktx * du[0], s_old[T_Y] + kty * du[1]
+        return OPEN, p, dp, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+    if tab.shape[0] > 0:
+        ktx = stiff[0] * dp
+        kty = stiff[1] * dp
+        dktx = stiff[0] * ddp
+        dkty = stiff[1] * ddp
+    else:
+        ktx = stiff[0]
+        kty = stiff[1]
+        dktx = 0.0
+        dkty = 0.0
+    return (STICK, p, dp, s_old[T_X] + ktx * du[0], s_old[T_Y] + kty * du[1],
+            ktx, kty, dktx, dkty)
 
 
 @numba.njit(cache=True)
-def _ortho_point(par, ktx, kty, kn, s_old, du, s_new, D, tol):
-    """One orthotropic update (section 8.1). Returns STICK/SLIP/OPEN or _FAILED."""
-    is_open, p, dp, ttx, tty = _begin_update(ktx, kty, kn, s_old, du, s_new, D)
-    if is_open:
-        return OPEN
+def _stick(ttx, tty, ktx, kty, dp, dktx, dkty, du, s_new, D):
+    """Stick: t = t^tr, D = D^e (94) plus ∂t^tr/∂u_N = ∂K_T/∂u_N Δu_T (zero for constant k_T)."""
+    s_new[T_X] = ttx
+    s_new[T_Y] = tty
+    D[0, 0] = ktx
+    D[1, 1] = kty
+    D[2, 2] = dp
+    if dktx != 0.0 or dkty != 0.0:
+        D[0, 2] = dktx * du[0]
+        D[1, 2] = dkty * du[1]
+    return STICK
+
+
+@numba.njit(cache=True)
+def _assemble_tangent(sens, ktx, kty, dp, dktx, dkty, du, D):
+    """D rows t_x, t_y from the sensitivities sens[i, m] = dt_i/dθ_m of the return map to
+    θ = (t^tr_x, t^tr_y, p, k_Tx, k_Ty) by the chain rule through t^tr = t_n + K_T(u_N) Δu_T,
+    p(u_N), K_T(u_N); row p_N: dp/du_N."""
+    for i in range(2):
+        D[i, 0] = sens[i, 0] * ktx
+        D[i, 1] = sens[i, 1] * kty
+        D[i, 2] = sens[i, 2] * dp
+        if dktx != 0.0 or dkty != 0.0:
+            D[i, 2] += (sens[i, 0] * du[0] + sens[i, 3]) * dktx + (sens[i, 1] * du[1] + sens[i, 4]) * dkty
+    D[2, 2] = dp
+
+
+@numba.njit(cache=True)
+def _ortho_point(par, stiff, s_old, du, s_new, D, tol, tab, h_ref):
+    """One orthotropic update (section 8.1). Returns STICK/SLIP/OPEN, _FAILED or _BEYOND."""
+    status, p, dp, ttx, tty, ktx, kty, dktx, dkty = _begin_update(stiff, s_old, du, s_new, D, tab, h_ref)
+    if status != STICK:
+        return status
     kxn = s_old[KAPPA_X]
     kyn = s_old[KAPPA_Y]
     mux, _ = _hardening(par[0], par[2], par[4], kxn)
     muy, _ = _hardening(par[1], par[3], par[5], kyn)
     s_tr = math.sqrt((ttx / mux) ** 2 + (tty / muy) ** 2)
     if s_tr - p <= 0.0:  # f ≤ 0, eq. (91): stick
-        s_new[T_X] = ttx
-        s_new[T_Y] = tty
-        D[0, 0] = ktx
-        D[1, 1] = kty
-        D[2, 2] = dp
-        return STICK
+        return _stick(ttx, tty, ktx, kty, dp, dktx, dkty, du, s_new, D)
     # slip: backward-Euler return mapping; ψ(λ) = p/S - 1 increases from ψ(0) < 0 to +∞
     wk = np.empty(_NE)
     r = par[6] * (math.log(muy) - math.log(mux))
@@ -474,22 +553,19 @@ def _ortho_point(par, ktx, kty, kn, s_old, du, s_new, D, tol):
     a21 = wk[_E_PHI_LAM]
     a22 = wk[_E_PHI_R]
     det = a11 * a22 - a12 * a21
-    # right-hand sides: θ = (t^tr_x, t^tr_y, p); F_p = -1, Φ_p = 0
-    b1 = (wk[_E_S_TTX], wk[_E_S_TTY], -1.0)
-    b2 = (wk[_E_PHI_TTX], wk[_E_PHI_TTY], 0.0)
-    dth = (ktx, kty, dp)
-    for j in range(3):
-        dlam = -(a22 * b1[j] - a12 * b2[j]) / det
-        dr = -(-a21 * b1[j] + a11 * b2[j]) / det
-        dtx = wk[_E_TX_LAM] * dlam + wk[_E_TX_R] * dr
-        dty = wk[_E_TY_LAM] * dlam + wk[_E_TY_R] * dr
-        if j == 0:
-            dtx += wk[_E_CX]
-        elif j == 1:
-            dty += wk[_E_CY]
-        D[0, j] = dtx * dth[j]
-        D[1, j] = dty * dth[j]
-    D[2, 2] = dp
+    # right-hand sides: θ = (t^tr_x, t^tr_y, p, k_Tx, k_Ty); F_p = -1, Φ_p = 0
+    b1 = (wk[_E_S_TTX], wk[_E_S_TTY], -1.0, wk[_E_S_KTX], wk[_E_S_KTY])
+    b2 = (wk[_E_PHI_TTX], wk[_E_PHI_TTY], 0.0, wk[_E_PHI_KTX], wk[_E_PHI_KTY])
+    # direct ∂t/∂θ at fixed (λ, r)
+    ex = (wk[_E_CX], 0.0, 0.0, wk[_E_TX_KTX], 0.0)
+    ey = (0.0, wk[_E_CY], 0.0, 0.0, wk[_E_TY_KTY])
+    sens = np.empty((2, 5))
+    for m in range(5):
+        dlam = -(a22 * b1[m] - a12 * b2[m]) / det
+        dr = -(-a21 * b1[m] + a11 * b2[m]) / det
+        sens[0, m] = wk[_E_TX_LAM] * dlam + wk[_E_TX_R] * dr + ex[m]
+        sens[1, m] = wk[_E_TY_LAM] * dlam + wk[_E_TY_R] * dr + ey[m]
+    _assemble_tangent(sens, ktx, kty, dp, dktx, dkty, du, D)
     return SLIP
 
 
@@ -508,20 +584,15 @@ def _iso_eval(lam, ttx, tty, ktx, kty, kapn, par):
 
 
 @numba.njit(cache=True)
-def _iso_point(par, ktx, kty, kn, s_old, du, s_new, D, tol):
-    """One isotropic update (section 8.2). Returns STICK/SLIP/OPEN or _FAILED."""
-    is_open, p, dp, ttx, tty = _begin_update(ktx, kty, kn, s_old, du, s_new, D)
-    if is_open:
-        return OPEN
+def _iso_point(par, stiff, s_old, du, s_new, D, tol, tab, h_ref):
+    """One isotropic update (section 8.2). Returns STICK/SLIP/OPEN, _FAILED or _BEYOND."""
+    status, p, dp, ttx, tty, ktx, kty, dktx, dkty = _begin_update(stiff, s_old, du, s_new, D, tab, h_ref)
+    if status != STICK:
+        return status
     kapn = s_old[KAPPA]
     mu0, _ = _hardening(par[0], par[1], par[2], kapn)
     if math.sqrt(ttx * ttx + tty * tty) - mu0 * p <= 0.0:  # f ≤ 0, eq. (120): stick
-        s_new[T_X] = ttx
-        s_new[T_Y] = tty
-        D[0, 0] = ktx
-        D[1, 1] = kty
-        D[2, 2] = dp
-        return STICK
+        return _stick(ttx, tty, ktx, kty, dp, dktx, dkty, du, s_new, D)
     lam = 0.0
     lo = 0.0
     hi = -1.0
@@ -568,39 +639,36 @@ def _iso_point(par, ktx, kty, kn, s_old, du, s_new, D, tol):
     s_new[UP_Y] = s_old[UP_Y] + dupy
     s_new[KAPPA] = kap
     s_new[DISSIPATION] = s_old[DISSIPATION] + tx * dupx + ty * dupy
-    # consistent tangent: F = |t| - μ_F p = 0 differentiated in λ and θ = (t^tr_x, t^tr_y, p)
+    # consistent tangent: F = |t| - μ_F p = 0 differentiated in λ and
+    # θ = (t^tr_x, t^tr_y, p, k_Tx, k_Ty); ∂|t|/∂k_Ti = -λ c_i t_i²/|t| at fixed λ
     f_lam = t_lam - dmu * p * kap_lam
     fac = 1.0 - dmu * p * lam
-    b = (tx * cx / t * fac, ty * cy / t * fac, -mu)
-    dth = (ktx, kty, dp)
+    txk = -lam * cx * tx
+    tyk = -lam * cy * ty
+    b = (tx * cx / t * fac, ty * cy / t * fac, -mu, tx * txk / t * fac, ty * tyk / t * fac)
+    ex = (cx, 0.0, 0.0, txk, 0.0)
+    ey = (0.0, cy, 0.0, 0.0, tyk)
     tx_lam = -ktx * cx * tx
     ty_lam = -kty * cy * ty
-    for j in range(3):
-        dlam = -b[j] / f_lam
-        dtx = tx_lam * dlam
-        dty = ty_lam * dlam
-        if j == 0:
-            dtx += cx
-        elif j == 1:
-            dty += cy
-        D[0, j] = dtx * dth[j]
-        D[1, j] = dty * dth[j]
-    D[2, 2] = dp
+    sens = np.empty((2, 5))
+    for m in range(5):
+        dlam = -b[m] / f_lam
+        sens[0, m] = tx_lam * dlam + ex[m]
+        sens[1, m] = ty_lam * dlam + ey[m]
+    _assemble_tangent(sens, ktx, kty, dp, dktx, dkty, du, D)
     return SLIP
 
 
 @numba.njit(cache=True)
-def _ortho_kernel(par, stiff, s_old, du, s_new, D, status, tol):
+def _ortho_kernel(par, stiff, s_old, du, s_new, D, status, tol, tab, h_ref):
     for i in range(s_old.shape[0]):
-        status[i] = _ortho_point(par, stiff[i, 0], stiff[i, 1], stiff[i, 2],
-                                 s_old[i], du[i], s_new[i], D[i], tol)
+        status[i] = _ortho_point(par, stiff[i], s_old[i], du[i], s_new[i], D[i], tol, tab, h_ref)
 
 
 @numba.njit(cache=True)
-def _iso_kernel(par, stiff, s_old, du, s_new, D, status, tol):
+def _iso_kernel(par, stiff, s_old, du, s_new, D, status, tol, tab, h_ref):
     for i in range(s_old.shape[0]):
-        status[i] = _iso_point(par, stiff[i, 0], stiff[i, 1], stiff[i, 2],
-                               s_old[i], du[i], s_new[i], D[i], tol)
+        status[i] = _iso_point(par, stiff[i], s_old[i], du[i], s_new[i], D[i], tol, tab, h_ref)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -621,8 +689,12 @@ class FrictionUpdate(NamedTuple):
 
 
 def normal_law(u_n, k_n):
-    """Normal pressure p_N ≥ 0 and dp_N/du_N for the total closure u_N (> 0 closes; ≤ 0 open)
-    with a constant stiffness k_N (the module's single sign-convention helper; vectorised)."""
+    """Normal pressure p_N ≥ 0 and dp_N/du_N for the total closure u_N (> 0 closes), the
+    module's single sign-convention helper (vectorised): ``k_n`` a constant stiffness (open for
+    u_N ≤ 0) or an :class:`~roughcontact.interface.InterfaceLaw` (u_N from its reference state;
+    open for u_N ≤ law.u_open; ValueError beyond its heavy end)."""
+    if isinstance(k_n, InterfaceLaw):
+        return k_n.normal(u_n)
     u = np.asarray(u_n, dtype=float)
     k = np.asarray(k_n, dtype=float)
     closed = u > 0.0
@@ -635,7 +707,8 @@ def normal_law(u_n, k_n):
 
 def initial_state(shape=(), *, u_N=0.0, k_N=None):
     """Virgin state(s): zero tractions, slips, hardening and dissipation, normal closure u_N
-    (p_N = k_N u_N stored if k_N is given). ``shape`` is the point shape ((): one point)."""
+    (p_N from :func:`normal_law` stored if k_N, a constant or an InterfaceLaw, is given; with a
+    law, u_N = 0 is its reference state p_N = p0). ``shape`` is the point shape ((): one point)."""
     shape = (shape,) if isinstance(shape, (int, np.integer)) else tuple(shape)
     s = np.zeros(shape + (NSTATE,))
     s[..., U_N] = u_N
@@ -650,7 +723,24 @@ def _as_model(model):
     raise TypeError("model must be an OrthotropicHardening or IsotropicHardening instance")
 
 
-def _prepare(state, du, k_N, k_Tx, k_Ty):
+def _stiffness_inputs(k_N, k_Tx, k_Ty):
+    """(named per-point stiffness inputs for the kernel, tab, h_ref): (k_Tx, k_Ty, k_N) for the
+    constant law, (k_Tx/k_N, k_Ty/k_N, unused) with an InterfaceLaw (see _begin_update)."""
+    if isinstance(k_N, InterfaceLaw):
+        if k_Tx is not None or k_Ty is not None:
+            raise ValueError("with an InterfaceLaw as k_N, k_Tx and k_Ty come from the law "
+                             "(k_T = kT_over_kN * k_N(u_N)); do not pass them")
+        tab, h_ref, (ax, ay) = k_N.kernel_data()
+        return (("kT_over_kN_x", ax), ("kT_over_kN_y", ay), ("unused", 1.0)), tab, h_ref
+    if k_Tx is None or k_Ty is None:
+        raise ValueError("k_Tx and k_Ty are required with a constant k_N")
+    return (("k_Tx", k_Tx), ("k_Ty", k_Ty), ("k_N", k_N)), _NO_TABLE, 0.0
+
+
+_NO_TABLE = np.empty((0, 4))
+
+
+def _prepare(state, du, stiffness):
     s = np.asarray(state, dtype=float)
     d = np.asarray(du, dtype=float)
     if s.ndim == 0 or s.shape[-1] != NSTATE:
@@ -662,7 +752,7 @@ def _prepare(state, du, k_N, k_Tx, k_Ty):
     except ValueError:
         raise ValueError(f"state {s.shape} and du {d.shape} do not broadcast") from None
     stiff = []
-    for name, k in (("k_Tx", k_Tx), ("k_Ty", k_Ty), ("k_N", k_N)):
+    for name, k in stiffness:
         a = np.asarray(k, dtype=float)
         if not np.all(np.isfinite(a) & (a > 0.0)):
             raise ValueError(f"{name} must be finite and > 0")
@@ -686,7 +776,7 @@ def _prepare(state, du, k_N, k_Tx, k_Ty):
     return shape, s2, d2, st
 
 
-def update(model, state, du, k_N, k_Tx, k_Ty, *, tol=1e-12) -> FrictionUpdate:
+def update(model, state, du, k_N, k_Tx=None, k_Ty=None, *, tol=1e-12) -> FrictionUpdate:
     """Incremental update of the interface law at many integration points (numba kernel).
 
     Parameters
@@ -695,24 +785,36 @@ def update(model, state, du, k_N, k_Tx, k_Ty, *, tol=1e-12) -> FrictionUpdate:
     state : (..., 9) array, the state at the start of the increment (see module docstring).
     du : (..., 3) array, increment (Δu_Tx, Δu_Ty, Δu_N) of the relative displacement;
         Δu_N > 0 closes the interface.
-    k_N, k_Tx, k_Ty : stiffnesses per unit area, > 0, broadcastable to the point shape.
+    k_N, k_Tx, k_Ty : stiffnesses per unit area, > 0, broadcastable to the point shape;
+        or k_N an :class:`~roughcontact.interface.InterfaceLaw` (tabulated p_N(u_N), k_N(u_N),
+        k_T = a k_N(u_N); then no k_Tx, k_Ty). See "Normal contact, sign convention and
+        reference state" in the module docstring.
     tol : relative Newton step tolerance of the return mapping (0 < tol ≤ 1e-6).
 
     Returns
     -------
     FrictionUpdate(state, D, status); state and D have the broadcast point shape.
+
+    Raises ValueError for bad input and for closures beyond the heavy end of a tabulated law.
     """
     model = _as_model(model)
     tol = float(tol)
     if not (0.0 < tol <= 1e-6):
         raise ValueError(f"tol must be in (0, 1e-6], got {tol!r}")
-    shape, s_old, d, st = _prepare(state, du, k_N, k_Tx, k_Ty)
+    stiffness, tab, h_ref = _stiffness_inputs(k_N, k_Tx, k_Ty)
+    shape, s_old, d, st = _prepare(state, du, stiffness)
     n = s_old.shape[0]
     s_new = np.empty_like(s_old)
     D = np.empty((n, 3, 3))
     status = np.empty(n, dtype=np.int8)
     kernel = _ortho_kernel if isinstance(model, OrthotropicHardening) else _iso_kernel
-    kernel(model.params(), st, s_old, d, s_new, D, status, tol)
+    kernel(model.params(), st, s_old, d, s_new, D, status, tol, tab, h_ref)
+    if np.any(status == _BEYOND):
+        bad = np.flatnonzero(status == _BEYOND)
+        raise ValueError(
+            f"u_N = {s_new[bad[0], U_N]:g} at points {bad[:10].tolist()} exceeds the heavy end of "
+            f"the tabulated normal law (u_max = {k_N.u_max:g}, p_max = {k_N.table.p_max:g}); "
+            "rebuild the table with a larger p_max")
     if np.any(status == _FAILED):
         bad = np.flatnonzero(status == _FAILED)
         raise RuntimeError(f"return mapping did not converge at points {bad[:10].tolist()}")
@@ -845,13 +947,14 @@ def _ref_mu(mu_m, mu_o, n, kappa):
     return mu_m * (1.0 - (1.0 - mu_o) * np.exp(-n * kappa))  # eq. (89)/(90)/(119)
 
 
-def _ref_residual(model, X, theta, s_old, kTx, kTy, kN, sx, sy):
+def _ref_residual(model, X, theta, s_old, stiffness, sx, sy):
     """Primitive backward-Euler residual (complex-step capable).
-    Orthotropic X = (t_x, t_y, γ, κ_x, κ_y); isotropic X = (t_x, t_y, γ, κ)."""
+    Orthotropic X = (t_x, t_y, γ, κ_x, κ_y); isotropic X = (t_x, t_y, γ, κ).
+    ``stiffness(u_N)`` -> (p_N, k_N, k_Tx, k_Ty) at the end-of-step closure."""
     dux, duy, dun = theta
+    p, _, kTx, kTy = stiffness(s_old[U_N] + dun)
     ttx = s_old[T_X] + kTx * dux
     tty = s_old[T_Y] + kTy * duy
-    p = kN * (s_old[U_N] + dun)
     if isinstance(model, OrthotropicHardening):
         tx, ty, gam, kx, ky = X
         mux = _ref_mu(model.mu_m_x, model.mu_o_x, model.n_x, kx)
@@ -952,37 +1055,58 @@ def _complex_jacobian(fun, x, h=1e-30):
     return np.array(cols).T
 
 
-def reference_update(model, state, du, k_N, k_Tx, k_Ty):
-    """Slow single-point twin of :func:`update` (pure Python/NumPy/SciPy).
+def _ref_stiffness(k_N, k_Tx, k_Ty):
+    """u_N -> (p_N, k_N, k_Tx, k_Ty) for the twin, complex-step capable, valid for a closed
+    contact: the constant law (p = k_N u_N) or the tabulated one
+    (interface.reference_closure_law, k_T = a k_N)."""
+    if isinstance(k_N, InterfaceLaw):
+        tab, h_ref, (ax, ay) = k_N.kernel_data()
+
+        def stiffness(u):
+            p, k = reference_closure_law(u, h_ref, tab)
+            return p, k, ax * k, ay * k
+        return stiffness
+    kN, kTx, kTy = float(k_N), float(k_Tx), float(k_Ty)
+    return lambda u: (kN * u, kN, kTx, kTy)
+
+
+def reference_update(model, state, du, k_N, k_Tx=None, k_Ty=None):
+    """Slow single-point twin of :func:`update` (pure Python/NumPy/SciPy), with the same
+    stiffness inputs (constants or an InterfaceLaw as ``k_N``).
 
     Solves the primitive backward-Euler system in (t_x, t_y, γ, κ...) with the potential (98)
     written through ν_x, ν_y explicitly, by Newton with complex-step Jacobians from a nested
     Brent initial guess; the tangent is the implicit-function derivative of that system,
-    again by complex steps. Returns (state (9,), D (3, 3), status)."""
+    again by complex steps (the stick tangent: complex steps of the trial tractions).
+    Returns (state (9,), D (3, 3), status)."""
     model = _as_model(model)
     s_old = np.asarray(state, dtype=float).copy()
     d = np.asarray(du, dtype=float)
-    kTx, kTy, kN = float(k_Tx), float(k_Ty), float(k_N)
+    stiffness = _ref_stiffness(k_N, k_Tx, k_Ty)
     s = s_old.copy()
     D = np.zeros((3, 3))
     u_n = s_old[U_N] + d[2]
     s[U_N] = u_n
-    if u_n <= 0.0:
+    p, kN, kTx, kTy = (float(np.real(v)) for v in stiffness(u_n))
+    if p <= 0.0:  # open (constant law: u_N ≤ 0)
         s[T_N] = s[T_X] = s[T_Y] = 0.0
         return s, D, OPEN
-    p = kN * u_n
     s[T_N] = p
     ttx, tty = s_old[T_X] + kTx * d[0], s_old[T_Y] + kTy * d[1]
     trial = s.copy()
     trial[T_X], trial[T_Y] = ttx, tty
     if limit_function(model, trial) <= 0.0:
         s[T_X], s[T_Y] = ttx, tty
-        return s, np.diag([kTx, kTy, kN]), STICK
+
+        def trial_tractions(theta):
+            pc, _, kx, ky = stiffness(s_old[U_N] + theta[2])
+            return np.array([s_old[T_X] + kx * theta[0], s_old[T_Y] + ky * theta[1], pc])
+        return s, _complex_jacobian(trial_tractions, d), STICK
     sx, sy = float(np.sign(ttx)), float(np.sign(tty))
     theta0 = d.astype(complex)
 
     def R(X, theta=theta0):
-        return _ref_residual(model, X, theta, s_old, kTx, kTy, kN, sx, sy)
+        return _ref_residual(model, X, theta, s_old, stiffness, sx, sy)
 
     X = _ref_initial_guess(model, s_old, ttx, tty, kTx, kTy, p)
     for _ in range(20):
