@@ -172,6 +172,22 @@ def test_heavy_end_raises(law):
         fr.update(fr.IsotropicHardening(0.3), s, [[0.0, 0.0, 0.0], [0.0, 0.0, law.u_max + 0.1]], law)
 
 
+def test_reading_117_total_form(law):
+    """(117) t_N^(i) = t_N^(i-1) + k_N Δu_N^(i) is exact only for a constant k_N. With the
+    statistical k_N(u_N) it is an explicit integration of p_N(u_N): over section 9.1's sixteen
+    equal increments from the initial load (p0 = 1e-3 N/mm²) to 1 N/mm² it ends 16 % below W/A0
+    (Table 1 surface, elastic), while the total form p_N = W(h_ref - u_N)/A0 used by the law
+    matches direct integration at every closure."""
+    u_end = law.h_ref - law.table.separation_at(1.0)
+    steps = np.linspace(0.0, u_end, 17)
+    t_N = law.p0
+    for u0, u1 in zip(steps[:-1], steps[1:]):
+        t_N += law.normal(u0)[1] * (u1 - u0)  # eq. (117), k_N at the start of the increment
+    w_end = law.table.direct([law.h_ref - u_end])[0][0]
+    assert law.normal(u_end)[0] == pytest.approx(w_end, rel=RTOL)
+    assert t_N < 0.9 * w_end
+
+
 # ---------------------------------------------------------------------------------------------
 # numba kernel vs twin, tangential factors
 # ---------------------------------------------------------------------------------------------
