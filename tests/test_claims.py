@@ -221,3 +221,53 @@ def test_stiffness_sensitivity_variants_and_psi_series():
     np.testing.assert_array_equal(ds["psi_pressure"].sel(psi=0.5), ds["pressure"].sel(variant="base"))
     with pytest.raises(ValueError, match="unknown moments"):
         scenes.stiffness_sensitivity(TABLE1, E_STAR, 0.5, {"bad": {"alpha": 2.0}}, [0.5], [0.0])
+
+
+# --------------------------------------------------------------------------------------
+# friction law: the evaluators on material points driven through friction.update
+# --------------------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def geometry():
+    return scenes.slip_rule_geometry({"orthotropic": (0.2, 0.4), "isotropic": (0.3, 0.3)}, [0.0, 0.5, 1.0],
+                                     directions=12)
+
+
+def test_slip_rule_evaluators(geometry):
+    base = dict(id="s", text="t", why="w", check="slip_rule", atol=1e-9)
+    assert claims.evaluate("f", {**base, "rule": "coaxial", "set": "orthotropic", "k": 0.0}, geometry).verdict == "reproduced"
+    assert claims.evaluate("f", {**base, "rule": "normal", "set": "orthotropic", "k": 1.0}, geometry).verdict == "reproduced"
+    assert claims.evaluate("f", {**base, "rule": "eq118", "set": "orthotropic"}, geometry).verdict == "reproduced"
+    assert claims.evaluate("f", {**base, "rule": "coaxial", "set": "isotropic"}, geometry).verdict == "reproduced"
+    # the statements are not vacuous: the orthotropic slip is not coaxial for k = 1 (36.8°) and
+    # not normal to f for k = 0
+    c = claims.evaluate("f", {**base, "rule": "coaxial", "set": "orthotropic", "k": 1.0}, geometry)
+    assert c.verdict == "not reproduced" and c.value > 0.5
+    assert claims.evaluate("f", {**base, "rule": "normal", "set": "orthotropic", "k": 0.0}, geometry).verdict == "not reproduced"
+    lim = claims.evaluate("f", dict(id="l", text="t", why="w", check="on_limit_surface", atol=1e-12), geometry)
+    assert lim.verdict == "reproduced"
+
+
+def test_hardening_evaluator():
+    h = scenes.hardening_path(0.5, 0.5, 0.275, k_T=7.0, p_N=2.5, slip=20.0, steps=100)
+    claim = dict(id="h", text="t", why="w", check="traction_follows_hardening", rtol=1e-12)
+    assert claims.evaluate("f", claim, h).verdict == "reproduced"
+    wrong = h.assign(mu_x_89=h["mu_x_89"] * (1 + 1e-6))  # a slightly different law fails
+    assert claims.evaluate("f", claim, wrong).verdict == "not reproduced"
+
+
+def test_fig18_path_evaluators():
+    ds = scenes.fig18_paths(["a", "b", "c"], 10.0, 2.5, angle_deg=30.0, u_max=5.0, steps=40)
+    sym = dict(id="m", text="t", why="w", check="mirror_symmetry", symmetric=["a", "b"], rtol=1e-12, asymmetry=1e-3)
+    assert claims.evaluate("f", sym, ds).verdict == "reproduced"
+    assert claims.evaluate("f", {**sym, "symmetric": ["a", "b", "c"]}, ds).verdict == "not reproduced"
+    order = dict(id="o", text="t", why="w", check="plastic_slip_order", component="magnitude")
+    assert claims.evaluate("f", {**order, "larger": "a", "smaller": "b"}, ds).verdict == "reproduced"
+    assert claims.evaluate("f", {**order, "larger": "b", "smaller": "a"}, ds).verdict == "not reproduced"
+    rev = dict(id="r", text="t", why="w", check="unloading_reverses_traction")
+    assert claims.evaluate("f", rev, ds).verdict == "reproduced"
+    # a path that stops before the traction can reverse (unload by less than 2 μ p/k_T) does not show it
+    short = scenes.fig18_paths(["a"], 10.0, 2.5, angle_deg=30.0, u_max=0.05, steps=5)
+    assert claims.evaluate("f", rev, short).verdict == "not reproduced"
+    dis = dict(id="d", text="t", why="w", check="dissipation_nonnegative")
+    assert claims.evaluate("f", dis, ds).verdict == "reproduced"
+    assert claims.evaluate("f", dis, ds.assign(dissipation=-ds["dissipation"])).verdict == "not reproduced"

@@ -93,3 +93,16 @@ def test_every_closure_is_documented():
 
     for name in CLOSURES:
         assert f"``\"{name}\"``" in mod.__doc__
+
+
+def test_effective_modulus_eq42():
+    """(42): two equal bodies give half the plane-strain modulus (Fig. 18: E = 2e5, ν = 0.25 →
+    1.0667e5 N/mm²); a rigid base gives the plane-strain modulus itself (section 9.1: E1 =
+    1.057e5, ν1 = 0.25 → 1.1275e5, printed 1.127e5)."""
+    assert asp.effective_modulus(2e5, 0.25, 2e5, 0.25) == pytest.approx(2e5 / (2 * (1 - 0.0625)), rel=1e-15)
+    assert asp.effective_modulus(1.057e5, 0.25) == pytest.approx(1.057e5 / 0.9375, rel=1e-15)
+    assert round(asp.effective_modulus(1.057e5, 0.25) / 1e5, 3) == 1.127
+    assert asp.effective_modulus(1.0, 0.3, 3.0, 0.2) == pytest.approx(1 / (0.91 + 0.96 / 3), rel=1e-15)
+    for bad in (dict(E1=0.0, nu1=0.3), dict(E1=1.0, nu1=0.6), dict(E1=1.0, nu1=0.3, E2=-1.0)):
+        with pytest.raises(ValueError):
+            asp.effective_modulus(**bad)

@@ -75,6 +75,7 @@ __all__ = [
     "REGIME_NAMES",
     "AsperityMaterial",
     "AsperityResponse",
+    "effective_modulus",
     "yield_coefficient_from_poisson",
     "paper_K_v",
     "factors_from_e1",
@@ -106,6 +107,22 @@ REGIME_NAMES = ("elastic", "elasto-plastic", "plastic")
 
 
 # --- material ------------------------------------------------------------------------------
+
+
+def effective_modulus(E1: float, nu1: float, E2: float = math.inf, nu2: float = 0.0) -> float:
+    """The effective (harmonic, contact) modulus E*, eq. (42): 1/E* = (1 − ν1²)/E1 + (1 − ν2²)/E2
+    [the unit of E1, E2]. The default second body is rigid (E2 = ∞): E* = E1/(1 − ν1²), the
+    plane-strain modulus; two equal bodies give half of it. ValueError for E ≤ 0 or ν ∉ (−1, 0.5]."""
+    compliance = 0.0
+    for name, E, nu in (("1", E1, nu1), ("2", E2, nu2)):
+        E, nu = float(E), float(nu)
+        if not (E > 0.0) or math.isnan(E):
+            raise ValueError(f"E{name} must be positive, got {E!r}")
+        if not (-1.0 < nu <= 0.5):
+            raise ValueError(f"nu{name} must lie in (-1, 0.5], got {nu!r}")
+        if math.isfinite(E):
+            compliance += (1.0 - nu * nu) / E  # eq. (42)
+    return 1.0 / compliance
 
 
 def yield_coefficient_from_poisson(nu):

@@ -10,6 +10,8 @@ Datasets written by the workflow (no I/O):
 * Figs 7–8 data (dims ``closure``, ``m00``, ``s``): elasto-plastic and purely elastic
   (``elastic_model_*``) pressure and stiffness.
 * stiffness-sensitivity data (dims ``variant``, ``s`` and ``psi``, ``s``).
+* friction law (section 8; scenes.slip_rule_geometry, hardening_path, fig18_paths): material
+  points driven through the implicit return mapping.
 
 "Fraction" names the part of the real area a claim is read against: ``plastic`` is A^p/A
 (eq. (81), the captioned ordinate of Fig. 5), ``yielded`` is (A^ep + A^p)/A (past first yield).
@@ -366,6 +368,147 @@ def psi_sensitivity(scene, claim, ds) -> Check:
     return _check(scene, claim, ok, detail, rise, rise, float(claim["bound"]))
 
 
+# ---------------------------------------------------------------------------------------
+# friction law (section 8, and the material-point basis of section 9.2's prose)
+# ---------------------------------------------------------------------------------------
+def _wrap(angle):
+    """Angles mapped to (−π, π]."""
+    return np.angle(np.exp(1j * np.asarray(angle, float)))
+
+
+def _sliding_angles(ds, set_name, k=None):
+    e = ds.sel(set=set_name)
+    return e if k is None else e.sel(k=float(k))
+
+
+def slip_rule(scene, claim, ds) -> Check:
+    """Section 8.1's statements on the slip direction, on material points pushed into sliding:
+    ``rule: coaxial`` — α = β (k = 0, or μ_x = μ_y); ``rule: normal`` — the slip is normal to
+    the limit surface (91), ∥ ∂f/∂t (k = 1, associated); ``rule: eq118`` — tan β = tan α
+    (ν_y/ν_x)² (118) for every k. The deviation (in rad) must be ≤ atol."""
+    e = _sliding_angles(ds, claim["set"], claim.get("k"))
+    a, b = e["alpha"].values, e["beta"].values
+    rule = claim["rule"]
+    if rule == "coaxial":
+        dev = np.abs(_wrap(a - b))
+    elif rule == "normal":
+        mux, muy = float(e["mu_x"]), float(e["mu_y"])
+        normal = np.arctan2(e["t_y"].values / muy**2, e["t_x"].values / mux**2)  # ∂f/∂t, eq. (106)
+        dev = np.abs(_wrap(a - normal))
+    elif rule == "eq118":
+        r2 = e["nu_y_over_nu_x"].values[..., None] ** 2
+        dev = np.abs(np.sin(b) * np.cos(a) - r2 * np.sin(a) * np.cos(b)) / np.hypot(1.0, r2)  # (118) × cos α cos β
+    else:
+        raise ValueError(f"unknown slip rule {rule!r}")
+    worst = float(np.max(dev))
+    spread = float(np.max(np.abs(_wrap(a - b))))
+    ok = worst <= float(claim["atol"])
+    which = f"k = {float(claim['k']):g}" if "k" in claim else "every k"
+    detail = (
+        f"set {claim['set']}, {which}: largest deviation "
+        f"{worst:.2g} rad over {a.size} sliding points ({'≤' if ok else '>'} {float(claim['atol']):g}); "
+        f"largest |α − β| there {np.degrees(spread):.3g}°"
+    )
+    return _check(scene, claim, ok, detail, worst, worst, float(claim["atol"]))
+
+
+def on_limit_surface(scene, claim, ds) -> Check:
+    """"The tangential traction can at most be equal to t_N μ_α" (section 8.1): after the
+    return mapping every sliding traction lies on the limit ellipse (91), |f|/p_N ≤ atol."""
+    f = np.sqrt((ds["t_x"] / ds["mu_x"]) ** 2 + (ds["t_y"] / ds["mu_y"]) ** 2) / float(ds.attrs["p_N"]) - 1.0
+    worst = float(np.abs(f).max())
+    ok = worst <= float(claim["atol"])
+    detail = f"max |f|/p_N over {f.size} sliding points: {worst:.2g} ({'≤' if ok else '>'} {float(claim['atol']):g})"
+    return _check(scene, claim, ok, detail, worst, worst, float(claim["atol"]))
+
+
+def traction_follows_hardening(scene, claim, ds) -> Check:
+    """(89): while sliding along x the traction ratio t_x/p_N equals μ_x(κ_x) of (89) at the
+    accumulated slip, to rtol; the detail gives the hardening reached."""
+    sliding = ds["kappa_x"].values > 0
+    rel = np.abs(ds["traction_ratio"].values[sliding] / ds["mu_x_89"].values[sliding] - 1.0)
+    worst = float(rel.max()) if rel.size else math.inf
+    ok = worst <= float(claim["rtol"])
+    detail = (
+        f"{int(sliding.sum())} sliding steps: max |t_x/(p_N μ_x(κ_x)) − 1| = {worst:.2g} "
+        f"({'≤' if ok else '>'} {float(claim['rtol']):g}); t_x/p_N from {ds['traction_ratio'].values[sliding][0]:.4g} "
+        f"to {ds['traction_ratio'].values[-1]:.4g} (μ_m = {ds.attrs['mu_m']:g})"
+    )
+    return _check(scene, claim, ok, detail, worst, worst, float(claim["rtol"]))
+
+
+def _end_of_loading(ds):
+    return int(np.flatnonzero(ds["loading"].values)[-1])
+
+
+def mirror_symmetry(scene, claim, ds) -> Check:
+    """Section 9.2: "for the same directional parameters μ, ν and the same axial compliance
+    parameters the behaviour must be symmetric; not so for other axial parameters": the response
+    to the x↔y mirrored path is the mirrored response (to rtol) for the ``symmetric`` cases and
+    differs by more than ``asymmetry`` for the ``asymmetric`` ones."""
+    rows, ok = [], True
+    for case in ds["case"].values:
+        d, m = ds.sel(case=case, path="direct"), ds.sel(case=case, path="swapped")
+        scale = float(np.max(np.hypot(d["t_x"], d["t_y"])))
+        diff = float(max(np.abs(d["t_x"] - m["t_y"]).max(), np.abs(d["t_y"] - m["t_x"]).max())) / scale
+        expect_sym = case in claim["symmetric"]
+        good = diff <= float(claim["rtol"]) if expect_sym else diff > float(claim["asymmetry"])
+        ok &= good
+        rows.append(f"({case}) {'symmetric' if expect_sym else 'asymmetric'}: {diff:.2g}{'' if good else ' ✗'}")
+    detail = "max |t(mirrored path) − mirrored t| / max|t| — " + "; ".join(rows)
+    return _check(scene, claim, ok, detail)
+
+
+def plastic_slip_order(scene, claim, ds) -> Check:
+    """Section 9.2: "plastic displacements are smaller for larger principal friction
+    coefficients" / "greater for greater values of the axial contact stiffness": the plastic
+    slip (``component``: magnitude, x or y) at the end of loading is larger in case ``larger``
+    than in case ``smaller``."""
+    i = _end_of_loading(ds)
+
+    def up(case):
+        e = ds.sel(case=case, path="direct").isel(step=i)
+        return {"magnitude": float(np.hypot(e["up_x"], e["up_y"])), "x": float(e["up_x"]), "y": float(e["up_y"])}[claim["component"]]
+
+    big, small = up(claim["larger"]), up(claim["smaller"])
+    ok = big > small
+    detail = (f"plastic slip ({claim['component']}) at the end of loading: ({claim['larger']}) {big:.6g} "
+              f"{'>' if ok else '≤'} ({claim['smaller']}) {small:.6g} [{ds['up_x'].attrs['units']}]")
+    return _check(scene, claim, ok, detail, big - small, big / small - 1.0 if small else math.inf, 0.0)
+
+
+def unloading_reverses_traction(scene, claim, ds) -> Check:
+    """Section 9.2: "in the unloading case the tangential forces change sign retaining sign of
+    the total displacements": for every case, during unloading the traction turns against the
+    imposed displacement (t·u < 0) while u keeps its direction (u·u_max > 0)."""
+    rows, ok = [], True
+    for case in ds["case"].values:
+        d = ds.sel(case=case, path="direct")
+        un = ~d["loading"].values
+        u = np.stack([d["u_x"].values, d["u_y"].values], -1)
+        tr = np.stack([d["t_x"].values, d["t_y"].values], -1)
+        u_end = u[_end_of_loading(ds)]
+        reversed_ = un & (np.einsum("ij,ij->i", tr, u) < 0) & (u @ u_end > 0)
+        good = bool(np.any(reversed_))
+        ok &= good
+        first = np.flatnonzero(reversed_)
+        at = float(np.hypot(*u[first[0]])) if first.size else math.nan
+        rows.append(f"({case}) traction reversed from |u| = {at:.3g} on unloading (|u_max| = {np.hypot(*u_end):.3g})")
+    return _check(scene, claim, ok, "; ".join(rows))
+
+
+def dissipation_nonnegative(scene, claim, ds) -> Check:
+    """Section 9.2 defines the frictional dissipation D = t_T · u_T^p; it must be ≥ 0 and never
+    decrease along every path (the second law for the slip rule)."""
+    dis = ds["dissipation"].values
+    worst_step = float(np.min(np.diff(dis, axis=-1)))
+    ok = float(dis.min()) >= 0.0 and worst_step >= -1e-12 * float(np.abs(dis).max())
+    final = ", ".join(f"({c}) {float(ds['dissipation'].sel(case=c, path='direct').isel(step=-1)):.4g}"
+                      for c in ds["case"].values)
+    detail = f"min D = {dis.min():.3g}, smallest step {worst_step:.2g}; D at the end: {final} [{ds['dissipation'].attrs['units']}]"
+    return _check(scene, claim, ok, detail, worst_step, worst_step, 0.0)
+
+
 #: check name in config → evaluator(scene, claim, dataset) -> Check
 EVALUATORS: dict[str, Callable[[str, Mapping[str, Any], Any], Check]] = {
     "small_psi_negligible": small_psi_negligible,
@@ -378,6 +521,13 @@ EVALUATORS: dict[str, Callable[[str, Mapping[str, Any], Any], Check]] = {
     "significant_gap_at_high_pressure": significant_gap_at_high_pressure,
     "no_effect_of_variants": no_effect_of_variants,
     "psi_sensitivity": psi_sensitivity,
+    "slip_rule": slip_rule,
+    "on_limit_surface": on_limit_surface,
+    "traction_follows_hardening": traction_follows_hardening,
+    "mirror_symmetry": mirror_symmetry,
+    "plastic_slip_order": plastic_slip_order,
+    "unloading_reverses_traction": unloading_reverses_traction,
+    "dissipation_nonnegative": dissipation_nonnegative,
 }
 
 

@@ -14,7 +14,10 @@ from typing import Iterator, Mapping, Sequence
 
 import numpy as np
 
-__all__ = ["STYLE", "style", "new_figure", "save", "fig3", "fig4", "fig5", "fig6", "stiffness_vs_pressure", "stiffness_sensitivity"]
+__all__ = [
+    "STYLE", "style", "new_figure", "save", "fig3", "fig4", "fig5", "fig6", "stiffness_vs_pressure",
+    "stiffness_sensitivity", "fig9", "slip_hardening", "friction_cases",
+]
 
 #: rcParams of every figure of the project.
 STYLE: dict = {
@@ -263,5 +266,74 @@ def stiffness_sensitivity(variants: Mapping[str, tuple], by_psi: Mapping[str, tu
             ax.set_ylabel(r"normal stiffness $K/A_0$ (elasto-plastic)")
             ax.set_title(title, fontsize=9)
             ax.legend(loc="upper left", fontsize=7)
+        fig.tight_layout()
+    return fig
+
+
+def fig9(panels: Mapping[str, dict]):
+    """Fig. 9: per panel (title → dict with mu_x, mu_y, ratio = ν_y/ν_x, t_x, t_y, up_x, up_y at
+    sliding points, p_N): the limit ellipse (91) (solid), the slip potential (98) scaled to the
+    same x semi-axis (dashed) and the slip direction at each sliding traction (arrows)."""
+    n = len(panels)
+    with style():
+        fig = new_figure(figsize=(3.6 * n, 3.8))
+        phi = np.linspace(0.0, 2.0 * np.pi, 361)
+        for k, (title, d) in enumerate(panels.items()):
+            ax = fig.add_subplot(1, n, k + 1)
+            a, b = d["mu_x"] * d["p_N"], d["mu_y"] * d["p_N"]
+            ax.plot(a * np.cos(phi), b * np.sin(phi), color=_COLORS[0], label="limit surface f = 0 (91)")
+            ax.plot(a * np.cos(phi), a * d["ratio"] * np.sin(phi), color=_COLORS[1], linestyle="--",
+                    label="slip potential g (98)")
+            up = np.hypot(d["up_x"], d["up_y"])
+            scale = 0.25 * max(a, b)
+            ax.quiver(d["t_x"], d["t_y"], scale * d["up_x"] / up, scale * d["up_y"] / up, angles="xy",
+                      scale_units="xy", scale=1.0, color=_COLORS[2], width=0.006, label="slip direction")
+            ax.plot(d["t_x"], d["t_y"], "o", color=_COLORS[0], markersize=2.5)
+            lim = 1.35 * max(a, b)
+            ax.set_xlim(-lim, lim)
+            ax.set_ylim(-lim, lim)
+            ax.set_aspect("equal")
+            ax.set_xlabel(r"$t_x$")
+            ax.set_ylabel(r"$t_y$")
+            ax.set_title(title, fontsize=9)
+        handles, labels = fig.axes[0].get_legend_handles_labels()
+        fig.legend(handles, labels, loc="lower center", ncol=3, fontsize=8)
+        fig.tight_layout(rect=(0.0, 0.07, 1.0, 1.0))
+    return fig
+
+
+def slip_hardening(kappa, ratio, mu_89, *, title: str | None = None):
+    """A material-point slip-hardening curve: t_x/p_N against the accumulated slip κ_x from the
+    return mapping (solid) and μ_x(κ_x) of (89) (dashed)."""
+    with style():
+        fig = new_figure()
+        ax = fig.add_subplot(1, 1, 1)
+        ax.plot(kappa, ratio, color=_COLORS[0], label=r"return mapping: $t_x/p_N$")
+        ax.plot(kappa, mu_89, color=_COLORS[1], linestyle="--", label=r"$\mu_x(\kappa_x)$, eq. (89)")
+        ax.set_xlabel(r"accumulated slip $\kappa_x$")
+        ax.set_ylabel(r"friction ratio $t_x/p_N$")
+        if title:
+            ax.set_title(title, fontsize=9)
+        ax.legend(loc="lower right")
+        fig.tight_layout()
+    return fig
+
+
+def friction_cases(panels: Mapping[str, tuple], *, xlabel: str, ylabel: str):
+    """Tractions against the imposed tangential displacement, one panel per case (title →
+    (u along the path, t_x, t_y, up_x, up_y)); loading and unloading run along the same axis."""
+    n = len(panels)
+    with style():
+        fig = new_figure(figsize=(3.8 * n, 3.6))
+        for k, (title, (u, tx, ty, upx, upy)) in enumerate(panels.items()):
+            ax = fig.add_subplot(1, n, k + 1)
+            ax.plot(u, tx, color=_COLORS[0], label=r"$t_x$")
+            ax.plot(u, ty, color=_COLORS[1], label=r"$t_y$")
+            ax.axhline(0.0, color="0.5", linewidth=0.6)
+            ax.set_xlabel(xlabel)
+            ax.set_ylabel(ylabel)
+            ax.set_title(title, fontsize=9)
+            if k == 0:
+                ax.legend(loc="lower center", fontsize=8)
         fig.tight_layout()
     return fig

@@ -1,6 +1,11 @@
-"""The data of the elasto-plastic figure scenes (Figs 5–8 and the stiffness-sensitivity scene),
-assembled from :mod:`roughcontact.sweep` — exactly the curves each scene needs, as labelled
-xarray Datasets ready for :mod:`roughcontact.claims` and :mod:`roughcontact.plots`. No I/O.
+"""The data of the figure scenes beyond Tables 1–3 and Figs 3–4, as labelled xarray Datasets
+ready for :mod:`roughcontact.claims` and :mod:`roughcontact.plots` — exactly the curves each
+scene needs. No I/O.
+
+* elasto-plastic (Figs 5–8, stiffness sensitivity): assembled from :mod:`roughcontact.sweep`;
+* interface friction law (section 8; Fig. 9, a slip-hardening curve, Fig. 18's cases (a)–(c) at
+  one material point): driven through :func:`roughcontact.friction.update`, the same
+  implicit return mapping the FE engine calls, so the figures show what the code does.
 """
 
 from __future__ import annotations
@@ -11,7 +16,10 @@ import numpy as np
 
 from .sweep import SweepSpec, parameter_units, run_sweep
 
-__all__ = ["psi_curves", "stiffness_curves", "stiffness_sensitivity"]
+__all__ = [
+    "psi_curves", "stiffness_curves", "stiffness_sensitivity",
+    "slip_rule_geometry", "hardening_path", "fig18_paths", "fig18_scene",
+]
 
 _MOMENTS = ("m00", "m20", "m02", "m40", "m04")
 
@@ -79,3 +87,159 @@ def stiffness_sensitivity(moments: Mapping[str, float], E_star: float, psi: floa
 
 def _units(units):
     return {} if units is None else {"units": dict(units)}
+
+
+# ---------------------------------------------------------------------------------------
+# interface friction law (section 8)
+# ---------------------------------------------------------------------------------------
+def _drive(model, du_steps, k_N, k_Tx, k_Ty, p_N):
+    """Run one material point per row of ``du_steps`` (points, steps, 2) of tangential
+    increments at a fixed normal pressure p_N (closure u_N = p_N/k_N, constant k_N); returns
+    the states after each step, shape (points, steps, NSTATE)."""
+    from . import friction
+
+    n_pts, n_steps = du_steps.shape[:2]
+    state = friction.initial_state(n_pts, u_N=p_N / k_N, k_N=k_N)
+    out = np.empty((n_pts, n_steps, friction.NSTATE))
+    du = np.zeros((n_pts, 3))
+    for i in range(n_steps):
+        du[:, :2] = du_steps[:, i]
+        state = friction.update(model, state, du, k_N, k_Tx, k_Ty).state
+        out[:, i] = state
+    return out
+
+
+def slip_rule_geometry(mu: Mapping[str, tuple], k_values: Sequence[float], *, directions: int = 24,
+                       k_T: float = 1.0, p_N: float = 1.0, overshoot: float = 20.0):
+    """Fig. 9: for each parameter set (name → (μ_x, μ_y), no hardening) and potential exponent k
+    of (98), a material point is pushed into sliding along ``directions`` imposed directions
+    with one large increment (``overshoot`` × the elastic limit; the backward-Euler return
+    lands on the limit surface (91)). Variables over (set, k, direction): the final traction
+    t_x, t_y [stress], the plastic slip u^p [length], the slip angle α (114) and traction angle
+    β (116) [rad], and ν_y/ν_x = (μ_y/μ_x)^k (98)."""
+    import xarray as xr
+
+    from . import friction
+
+    phi = np.linspace(0.0, 2.0 * np.pi, directions, endpoint=False)
+    names, ks = list(mu), [float(k) for k in k_values]
+    shape = (len(names), len(ks), directions)
+    data = {v: np.empty(shape) for v in ("t_x", "t_y", "up_x", "up_y", "alpha", "beta")}
+    ratio = np.empty(shape[:2])
+    for a, name in enumerate(names):
+        mu_x, mu_y = (float(v) for v in mu[name])
+        reach = overshoot * max(mu_x, mu_y) * p_N / k_T
+        for b, k in enumerate(ks):
+            model = friction.OrthotropicHardening(mu_x, mu_y, k=k)
+            du = np.stack([reach * np.cos(phi), reach * np.sin(phi)], axis=-1)[:, None, :]
+            s = _drive(model, du, 1.0, k_T, k_T, p_N)[:, -1]
+            up = s[:, [friction.UP_X, friction.UP_Y]]
+            data["t_x"][a, b], data["t_y"][a, b] = s[:, friction.T_X], s[:, friction.T_Y]
+            data["up_x"][a, b], data["up_y"][a, b] = up[:, 0], up[:, 1]
+            data["alpha"][a, b] = friction.slip_angle(up)  # eq. (114)
+            data["beta"][a, b] = friction.traction_angle(s[:, [friction.T_X, friction.T_Y]])  # eq. (116)
+            ratio[a, b] = (mu_y / mu_x) ** k  # eq. (98)
+    dims = ("set", "k", "direction")
+    # dimensionless demonstration: p_N = 1, k_T = 1 (any consistent units)
+    units = {"t_x": "unit of p_N", "t_y": "unit of p_N", "up_x": "unit of p_N/k_T", "up_y": "unit of p_N/k_T",
+             "alpha": "rad", "beta": "rad"}
+    ds = xr.Dataset(
+        {v: (dims, data[v], {"units": units[v]}) for v in data},
+        coords={"set": ("set", names, {"units": "1"}), "k": ("k", ks, {"units": "1"}),
+                "direction": ("direction", phi, {"units": "rad", "long_name": "imposed slip direction"})},
+    )
+    ds["nu_y_over_nu_x"] = (("set", "k"), ratio, {"units": "1", "long_name": "(mu_y/mu_x)^k, eq. (98)"})
+    ds["mu_x"] = ("set", [float(mu[n][0]) for n in names], {"units": "1"})
+    ds["mu_y"] = ("set", [float(mu[n][1]) for n in names], {"units": "1"})
+    ds.attrs.update(p_N=p_N, k_T=k_T)
+    return ds
+
+
+def hardening_path(mu_m: float, mu_o: float, n: float, *, k_T: float, p_N: float, slip: float, steps: int):
+    """A material-point slip-hardening curve: monotone slip along x (axis-aligned, so κ_x is
+    the plastic slip) in ``steps`` equal increments up to ``slip`` [length] at pressure p_N;
+    the traction ratio t_x/p_N against the accumulated slip κ_x, and μ_x(κ_x) of (89)."""
+    import xarray as xr
+
+    from . import friction
+
+    model = friction.OrthotropicHardening(mu_m, mu_m, mu_o, mu_o, n, n, k=0.0)
+    u = np.linspace(0.0, slip, steps + 1)[1:]
+    du = np.zeros((1, steps, 2))
+    du[0, :, 0] = slip / steps
+    s = _drive(model, du, 1.0, k_T, k_T, p_N)[0]
+    kappa = s[:, friction.KAPPA_X]
+    return xr.Dataset(
+        {
+            "traction_ratio": ("step", s[:, friction.T_X] / p_N, {"units": "1", "long_name": "t_x/p_N"}),
+            "kappa_x": ("step", kappa, {"units": "1/n (length unit of n)", "long_name": "accumulated slip, errata E19"}),
+            "mu_x_89": ("step", model.mu(kappa, kappa)[0], {"units": "1", "long_name": "mu_x of eq. (89)"}),
+            "u_x": ("step", u, {"units": "1/n (length unit of n)", "long_name": "imposed tangential displacement"}),
+        },
+        coords={"step": ("step", np.arange(steps), {"units": "1"})},
+        attrs=dict(mu_m=mu_m, mu_o=mu_o, n=n, k_T=k_T, p_N=p_N),
+    )
+
+
+def fig18_paths(cases: Sequence[str], k_N: float, p_N: float, *, angle_deg: float, u_max: float,
+                steps: int, length_unit: str = "um", stress_unit: str = "unit of p_N"):
+    """Tractions against imposed slip for the parameter sets (a), (b), (c) of the Fig. 18
+    caption (friction.fig18_preset) at one material point under pressure p_N: the tangential
+    displacement goes from 0 to ``u_max`` along ``angle_deg`` from x and back to 0 (2 ×
+    ``steps`` increments), and — for the symmetry claims — the mirror path with x and y
+    exchanged (dim ``path``: "direct", "swapped"). Variables over (case, path, step): imposed
+    u_x, u_y, tractions t_x, t_y, plastic slips u^p, dissipation."""
+    import xarray as xr
+
+    from . import friction
+
+    th = np.radians(angle_deg)
+    ramp = np.concatenate([np.linspace(0.0, u_max, steps + 1), np.linspace(u_max, 0.0, steps + 1)[1:]])
+    direct = np.stack([ramp * np.cos(th), ramp * np.sin(th)], axis=-1)
+    paths = np.stack([direct, direct[:, ::-1]])  # (path, step + 1, 2)
+    incr = np.diff(paths, axis=1)
+    names = ("t_x", "t_y", "up_x", "up_y", "dissipation")
+    cols = (friction.T_X, friction.T_Y, friction.UP_X, friction.UP_Y, friction.DISSIPATION)
+    out = {v: np.empty((len(cases), 2, incr.shape[1])) for v in names}
+    for c, case in enumerate(cases):
+        model, k = friction.fig18_preset(case, k_N, length_unit)
+        s = _drive(model, incr, k["k_N"], k["k_Tx"], k["k_Ty"], p_N)
+        for v, col in zip(names, cols):
+            out[v][c] = s[..., col]
+    dims = ("case", "path", "step")
+    units = {"t_x": stress_unit, "t_y": stress_unit, "up_x": length_unit, "up_y": length_unit,
+             "dissipation": f"{stress_unit}*{length_unit}"}
+    ds = xr.Dataset(
+        {v: (dims, out[v], {"units": units[v]}) for v in names},
+        coords={"case": ("case", list(cases), {"units": "1"}), "path": ("path", ["direct", "swapped"], {"units": "1"}),
+                "step": ("step", np.arange(incr.shape[1]), {"units": "1"})},
+    )
+    ds["u_x"] = (("path", "step"), paths[:, 1:, 0], {"units": length_unit})
+    ds["u_y"] = (("path", "step"), paths[:, 1:, 1], {"units": length_unit})
+    ds["loading"] = ("step", np.arange(incr.shape[1]) < steps, {"units": "1", "long_name": "True while u grows"})
+    ds.attrs.update(k_N=k_N, p_N=p_N, angle_deg=angle_deg, u_max=u_max)
+    return ds
+
+
+def fig18_scene(surface: Mapping[str, float], cfg: Mapping, units: Mapping[str, str]):
+    """Fig. 18's cases (a)–(c) at one material point of the punch interface: E* from the two
+    bodies (42), the material from ψ by the scene's closure, the normal law of the surface
+    tabulated (interface.NormalLawTable, elasto-plastic) and put in its reference state at the
+    initial pressure p0; k_N = k_N(u_N = 0) there, k_T as the preset says (0.7 k_N, or k_N).
+    Then :func:`fig18_paths` along the scene's path."""
+    from .asperity import effective_modulus
+    from .closures import resolve_material
+    from .interface import InterfaceLaw, NormalLawTable
+    from .surface import SpectralMoments
+
+    moments = SpectralMoments(**surface)
+    E = effective_modulus(cfg["E1"], cfg["nu1"], cfg["E2"], cfg["nu2"])  # eq. (42)
+    material = resolve_material(moments, E_star=E, psi=cfg["psi"], closure=cfg["closure"])
+    p0 = float(cfg["p0"])
+    table = NormalLawTable.build(moments, "elastoplastic", material=material, pressure_range=(0.5 * p0, 2.0 * p0))
+    p_ref, k_N = InterfaceLaw.from_pressure(table, p0).normal(0.0)
+    ds = fig18_paths(cfg["cases"], float(k_N), float(p_ref), angle_deg=cfg["angle_deg"], u_max=cfg["u_max"],
+                     steps=cfg["steps"], length_unit=units["length"], stress_unit=units["stress"])
+    ds.attrs.update(E_star=E, psi=float(cfg["psi"]), closure=cfg["closure"], Y=material.Y,
+                    normal_table_nodes=table.n_nodes)
+    return ds

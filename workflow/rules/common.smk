@@ -16,7 +16,10 @@ HERTZ_SCENES = [name for name, sc in SCENES.items() if sc["kind"] == "hertz_fact
 # elasto-plastic scenes that compute their own curves (a scene with `uses:` draws another's)
 EP_KINDS = ("elastoplastic_psi", "stiffness_pressure", "stiffness_sensitivity")
 EP_SCENES = [name for name, sc in SCENES.items() if sc["kind"] in EP_KINDS and "uses" not in sc]
-FIGURE_SCENES = BEARING_SCENES + HERTZ_SCENES + [n for n, sc in SCENES.items() if sc["kind"] in EP_KINDS]
+FRICTION_KINDS = ("friction_slip_rule", "friction_hardening", "friction_cases")
+FRICTION_SCENES = [name for name, sc in SCENES.items() if sc["kind"] in FRICTION_KINDS]
+FIGURE_SCENES = (BEARING_SCENES + HERTZ_SCENES + [n for n, sc in SCENES.items() if sc["kind"] in EP_KINDS]
+                 + FRICTION_SCENES)
 MODEL_NAMES = list(config["models"])
 SWEEPS = config.get("sweeps", {})
 

@@ -68,6 +68,30 @@ rule curves_elastoplastic:
         "../scripts/curves_elastoplastic.py"
 
 
+rule curves_friction:
+    """Material points of the interface friction law (section 8) driven through the return
+    mapping: the slip rule (Fig. 9), a slip-hardening curve, Fig. 18's cases (a)-(c)."""
+    input:
+        lib=PHYSICS_SOURCES,
+    output:
+        "results/curves/{scene}.nc",
+    log:
+        "logs/curves/{scene}.log",
+    benchmark:
+        "results/benchmarks/curves/{scene}.tsv"
+    wildcard_constraints:
+        scene=_alternation(FRICTION_SCENES),
+    params:
+        scene=lambda w: w.scene,
+        scene_config=lambda w: compute_config(w.scene),
+        surface=lambda w: surface_of(SCENES[w.scene]["surface"]) if "surface" in SCENES[w.scene] else None,
+        units=dict(config["units"]),
+        provenance=lambda w: scene_provenance(w.scene),
+    threads: 1
+    script:
+        "../scripts/curves_friction.py"
+
+
 rule figure:
     """Plot a figure scene, export its data as CSV and check its prose claims."""
     input:

@@ -4,6 +4,7 @@ import csv
 import io as _io
 from pathlib import Path
 
+import numpy as np
 import yaml
 
 from roughcontact import claims, io, plots, verify
@@ -104,12 +105,48 @@ def stiffness_sensitivity(scene, cfg, ds):
     return fig, table, _claims(scene, cfg, ds)
 
 
+def friction_slip_rule(scene, cfg, ds):
+    """Fig. 9: one panel per k for the first (orthotropic) parameter set."""
+    first = str(ds["set"].values[0])
+    e = ds.sel(set=first)
+    panels = {
+        f"{first}: mu = ({float(e['mu_x']):g}, {float(e['mu_y']):g}), k = {k:g}": dict(
+            mu_x=float(e["mu_x"]), mu_y=float(e["mu_y"]), ratio=float(e["nu_y_over_nu_x"].sel(k=k)),
+            p_N=float(ds.attrs["p_N"]), **{v: e[v].sel(k=k).values for v in ("t_x", "t_y", "up_x", "up_y")})
+        for k in e["k"].values
+    }
+    fig = plots.fig9(panels)
+    table = _long_csv(ds, ["t_x", "t_y", "up_x", "up_y", "alpha", "beta"])
+    return fig, table, _claims(scene, cfg, ds)
+
+
+def friction_hardening(scene, cfg, ds):
+    fig = plots.slip_hardening(ds["kappa_x"].values, ds["traction_ratio"].values, ds["mu_x_89"].values,
+                               title=f"mu_m = {cfg['mu_m']:g}, mu_o = {cfg['mu_o']:g}, n = {cfg['n']:g} per length unit")
+    table = _long_csv(ds, ["u_x", "kappa_x", "traction_ratio", "mu_x_89"])
+    return fig, table, _claims(scene, cfg, ds)
+
+
+def friction_cases(scene, cfg, ds):
+    panels = {}
+    for case in ds["case"].values:
+        d = ds.sel(case=case, path="direct")
+        u = np.hypot(d["u_x"].values, d["u_y"].values)
+        panels[f"case ({case})"] = (np.where(d["loading"].values, u, 2 * u.max() - u),
+                                    d["t_x"].values, d["t_y"].values, d["up_x"].values, d["up_y"].values)
+    fig = plots.friction_cases(panels, xlabel=f"imposed slip path, loading then unloading [{ds['up_x'].attrs['units']}]",
+                               ylabel=f"traction [{ds['t_x'].attrs['units']}]")
+    table = _long_csv(ds, ["t_x", "t_y", "up_x", "up_y", "dissipation"])
+    return fig, table, _claims(scene, cfg, ds)
+
+
 def run(scene, cfg, data, expected, out, log):
     with io.log_to(log) as logger:
         ds = io.read_netcdf(data)
         make = {"bearing_ratio": bearing_ratio, "hertz_factors": hertz_factors,
                 "elastoplastic_psi": elastoplastic_psi, "stiffness_pressure": stiffness_pressure,
-                "stiffness_sensitivity": stiffness_sensitivity}[cfg["kind"]]
+                "stiffness_sensitivity": stiffness_sensitivity, "friction_slip_rule": friction_slip_rule,
+                "friction_hardening": friction_hardening, "friction_cases": friction_cases}[cfg["kind"]]
         fig, table, checks = make(scene, cfg, ds)
         checks = verify.apply_expectations(checks, yaml.safe_load(Path(expected).read_text()))
         for c in checks:
