@@ -271,3 +271,17 @@ def test_fig18_path_evaluators():
     dis = dict(id="d", text="t", why="w", check="dissipation_nonnegative")
     assert claims.evaluate("f", dis, ds).verdict == "reproduced"
     assert claims.evaluate("f", dis, ds.assign(dissipation=-ds["dissipation"])).verdict == "not reproduced"
+
+
+def test_elastoplastic_numerics_checks():
+    """The numerics rows compare the totals (sums of the regime parts) of both integrators."""
+    cols = ["elastic_area_fraction", "elastoplastic_area_fraction", "plastic_area_fraction",
+            "elastic_pressure", "elastoplastic_pressure", "plastic_pressure", "stiffness"]
+    ref = np.array([[0.1, 0.02, 0.0, 10.0, 3.0, 0.0, 50.0]])
+    ds = xr.Dataset({"production": (("point", "column"), ref * (1 + np.array([[1e-9, 0, 0, 0, 0, 0, 2e-8]]))),
+                     "reference": (("point", "column"), ref)},
+                    coords={"point": ["p1"], "column": cols}, attrs={"reference_rtol": 1e-10})
+    checks = claims.elastoplastic_numerics_checks("ep", ds, 1e-8, "why")
+    assert [c.quantity for c in checks] == ["area_fraction", "pressure", "stiffness"]
+    assert [c.verdict for c in checks] == ["reproduced", "reproduced", "not reproduced"]
+    assert checks[0].value == pytest.approx(0.12 + 1e-10, rel=1e-15) and checks[0].id.endswith("point=p1")

@@ -509,6 +509,39 @@ def dissipation_nonnegative(scene, claim, ds) -> Check:
     return _check(scene, claim, ok, detail, worst_step, worst_step, 0.0)
 
 
+# ---------------------------------------------------------------------------------------
+# numerics: elasto-plastic production against the slow twin
+# ---------------------------------------------------------------------------------------
+def elastoplastic_numerics_checks(scene: str, ds, rtol: float, why: str) -> list[Check]:
+    """One ``numerics`` check per check point and total (A/A0, W/A0, K/A0): |production −
+    reference|/reference ≤ rtol (scenes.elastoplastic_numerics)."""
+    from .verify import numerics_id
+
+    cols = list(ds["column"].values)
+    totals = {
+        "area_fraction": [c for c in cols if c.endswith("area_fraction")],
+        "pressure": [c for c in cols if c.endswith("_pressure")],
+        "stiffness": ["stiffness"],
+    }
+    out = []
+    for point in ds["point"].values:
+        e = ds.sel(point=point)
+        for quantity, parts in totals.items():
+            p = float(e["production"].sel(column=parts).sum())
+            r = float(e["reference"].sel(column=parts).sum())
+            err = (p - r) / abs(r) if r else math.inf
+            ok = abs(err) <= rtol
+            out.append(Check(
+                id=numerics_id(scene, "elastoplastic", quantity, str(point), "point"),
+                kind="numerics", scene=scene, verdict=REPRODUCED if ok else NOT_REPRODUCED,
+                detail=(f"production {p:.12g} vs slow twin {r:.12g} (rtol {ds.attrs['reference_rtol']:g}): "
+                        f"|rel. diff| {abs(err):.1e} {'≤' if ok else '>'} {rtol:.0e}"),
+                description="elasto-plastic production vs slow twin", model="elastoplastic", quantity=quantity,
+                s=str(point), target=r, value=p, error=err, tolerance=rtol, tolerance_why=why,
+            ))
+    return out
+
+
 #: check name in config → evaluator(scene, claim, dataset) -> Check
 EVALUATORS: dict[str, Callable[[str, Mapping[str, Any], Any], Check]] = {
     "small_psi_negligible": small_psi_negligible,

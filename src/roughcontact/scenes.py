@@ -18,7 +18,7 @@ from .sweep import SweepSpec, parameter_units, run_sweep
 
 __all__ = [
     "psi_curves", "stiffness_curves", "stiffness_sensitivity",
-    "slip_rule_geometry", "hardening_path", "fig18_paths", "fig18_scene",
+    "slip_rule_geometry", "hardening_path", "fig18_paths", "fig18_scene", "elastoplastic_numerics",
 ]
 
 _MOMENTS = ("m00", "m20", "m02", "m40", "m04")
@@ -83,6 +83,44 @@ def stiffness_sensitivity(moments: Mapping[str, float], E_star: float, psi: floa
         ds[f"psi_{v}"] = by_psi[v]
     ds.attrs.update(psi=float(psi), closure=closure)
     return ds
+
+
+_EP_COLUMNS = ("elastic_area_fraction", "elastoplastic_area_fraction", "plastic_area_fraction",
+               "elastic_pressure", "elastoplastic_pressure", "plastic_pressure", "stiffness")
+
+
+def elastoplastic_numerics(points: Sequence[Mapping], surfaces: Mapping[str, Mapping[str, float]],
+                           E_star: float, *, production="table", reference_rtol: float = 1e-10):
+    """Production (numba, preset ``production``) against the slow twin
+    (elastoplastic.reference_integrals, adaptive cubature at ``reference_rtol``) at check points
+    (each: surface name, ψ, s, hertz, optional ``paper_K_v_poisson`` for the paper's K_v of (75)).
+    Variables over (point, column): ``production``, ``reference``; columns are the regime parts
+    of A/A0 and W/A0 and K/A0 (totals are their sums)."""
+    import xarray as xr
+
+    from .asperity import paper_K_v
+    from .closures import resolve_material
+    from .elastoplastic import elastoplastic_contact, reference_integrals
+    from .surface import SpectralMoments
+
+    prod, ref, labels = [], [], []
+    for pt in points:
+        surface = SpectralMoments(**surfaces[pt["surface"]])
+        nu = pt.get("paper_K_v_poisson")
+        mat = resolve_material(surface, E_star=E_star, psi=pt["psi"],
+                               K_v=None if nu is None else float(paper_K_v(nu)))
+        c = elastoplastic_contact(surface, [pt["s"]], mat, hertz=pt["hertz"], accuracy=production)
+        prod.append([float(getattr(c, k)[0]) for k in _EP_COLUMNS])
+        ref.append(list(reference_integrals(surface, pt["s"], mat, hertz=pt["hertz"], rtol=reference_rtol)[:7]))
+        labels.append(f"{pt['surface']},psi={pt['psi']:g},s={pt['s']:g},{pt['hertz']}"
+                      + ("" if nu is None else f",K_v(nu={nu:g})"))
+    dims = ("point", "column")
+    return xr.Dataset(
+        {"production": (dims, np.array(prod), {"units": "A/A0: 1; W/A0: unit of E*; K/A0: unit of E* per L"}),
+         "reference": (dims, np.array(ref), {"units": "as production"})},
+        coords={"point": ("point", labels, {"units": "1"}), "column": ("column", list(_EP_COLUMNS), {"units": "1"})},
+        attrs={"production_preset": str(production), "reference_rtol": reference_rtol, "E_star": E_star},
+    )
 
 
 def _units(units):

@@ -20,6 +20,7 @@ FRICTION_KINDS = ("friction_slip_rule", "friction_hardening", "friction_cases")
 FRICTION_SCENES = [name for name, sc in SCENES.items() if sc["kind"] in FRICTION_KINDS]
 FIGURE_SCENES = (BEARING_SCENES + HERTZ_SCENES + [n for n, sc in SCENES.items() if sc["kind"] in EP_KINDS]
                  + FRICTION_SCENES)
+NUMERICS_SCENES = [name for name, sc in SCENES.items() if sc["kind"] == "elastoplastic_numerics"]
 MODEL_NAMES = list(config["models"])
 SWEEPS = config.get("sweeps", {})
 
@@ -57,12 +58,13 @@ def scene_targets():
         out += [f"paper_figures/{name}.md", f"paper_figures/{name}.csv"]
     for name in FIGURE_SCENES:
         out += [f"paper_figures/{name}.png", f"paper_figures/{name}.csv"]
+    out += [f"paper_figures/{name}.csv" for name in NUMERICS_SCENES]
     return out
 
 
 def scene_checks():
     """The per-scene verification rows collected by VERIFICATION.md."""
-    return [f"results/verify/{name}.checks.csv" for name in PRINTED_TABLES + FIGURE_SCENES]
+    return [f"results/verify/{name}.checks.csv" for name in PRINTED_TABLES + FIGURE_SCENES + NUMERICS_SCENES]
 
 
 def table_columns(scene):

@@ -7,6 +7,48 @@ def errata_input(wildcards):
     return [str(path)] if path.exists() else []
 
 
+rule numerics_elastoplastic:
+    """Elasto-plastic production vs the slow twin at a numerics scene's check points (slow:
+    the twin is a nested adaptive cubature)."""
+    input:
+        lib=PHYSICS_SOURCES,
+    output:
+        "results/numerics/{scene}.nc",
+    log:
+        "logs/numerics/{scene}.log",
+    benchmark:
+        "results/benchmarks/numerics/{scene}.tsv"
+    wildcard_constraints:
+        scene=_alternation(NUMERICS_SCENES),
+    params:
+        scene=lambda w: w.scene,
+        scene_config=lambda w: compute_config(w.scene),
+        surfaces=lambda w: {p["surface"]: surface_of(p["surface"]) for p in SCENES[w.scene]["points"]},
+    threads: 1
+    script:
+        "../scripts/numerics_elastoplastic.py"
+
+
+rule numerics_report:
+    """The numerics rows of a numerics scene (results/verify/<scene>.checks.csv) and its CSV."""
+    input:
+        data="results/numerics/{scene}.nc",
+        code=REPORT_SOURCES,
+    output:
+        csv="paper_figures/{scene}.csv",
+        checks="results/verify/{scene}.checks.csv",
+    log:
+        "logs/numerics/{scene}.report.log",
+    wildcard_constraints:
+        scene=_alternation(NUMERICS_SCENES),
+    params:
+        scene=lambda w: w.scene,
+        scene_config=lambda w: SCENES[w.scene],
+    localrule: True
+    script:
+        "../scripts/numerics_report.py"
+
+
 rule verification_report:
     """paper_figures/VERIFICATION.md (+ CSV and a JSON summary) from every scene's checks."""
     input:

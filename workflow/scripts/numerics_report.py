@@ -1,0 +1,20 @@
+"""Numerics rows of a numerics scene (rule numerics_report): checks CSV and the data as CSV."""
+
+from roughcontact import claims, io, verify
+
+
+def run(scene, cfg, data, out, log):
+    with io.log_to(log) as logger:
+        ds = io.read_netcdf(data)
+        checks = claims.elastoplastic_numerics_checks(scene, ds, float(cfg["rtol"]), " ".join(cfg["why"].split()))
+        for c in checks:
+            logger.info("%s: %s %s", c.id, c.verdict, c.detail)
+        table = ds[["production", "reference"]].to_dataframe().reset_index().to_csv(index=False, float_format="%.17g")
+        io.write_text(out["csv"], table)
+        io.write_text(out["checks"], verify.checks_to_csv(checks))
+
+
+if "snakemake" in globals():
+    sm = snakemake  # noqa: F821
+    run(sm.params.scene, sm.params.scene_config, sm.input.data, {"csv": sm.output.csv, "checks": sm.output.checks},
+        sm.log[0])
