@@ -20,7 +20,7 @@ def load_tables():
         T = pv[key]
         out[key] = dict(
             S=SpectralMoments(**T["surface"]),
-            s=np.array([float(x) for x in T["s"]]),
+            s=np.array([float(x) for x in T["rows"]]),
             A=np.array([float(x) for x in T["columns"]["anisotropic"]["area_fraction"]]) / 100.0,
             W=np.array([float(x) for x in T["columns"]["anisotropic"]["pressure"]]),
         )

@@ -302,9 +302,10 @@ def test_console_script():
 def _table3_rows():
     import yaml
 
-    data = yaml.safe_load((Path(__file__).parent / "data" / "table3.yaml").read_text())
+    table = yaml.safe_load((Path(__file__).parents[1] / "config" / "paper_values.yaml").read_text())["table3"]
+    columns = [table["columns"][c]["kn_over_kt"] for c in table["columns"]]  # nu = 0, 1/4, 1/2
     # reading of the first column: "10.E-03" -> B^2/A^2 = 1e-3 (see tests/test_tangential.py)
-    return [(10.0 ** int(row[0].split("E")[1]), row[1:]) for row in data["rows"]]
+    return [(10.0 ** int(label.split("E")[1]), [col[i] for col in columns]) for i, label in enumerate(table["rows"])]
 
 
 @pytest.mark.parametrize("nu,col", [("0", 0), ("0.25", 1), ("0.5", 2)])

@@ -21,7 +21,7 @@ PAPER = yaml.safe_load((Path(__file__).parents[1] / "config" / "paper_values.yam
 
 def _table(name):
     t = PAPER[name]
-    return SpectralMoments(**t["surface"]), np.array([float(v) for v in t["s"]]), t
+    return SpectralMoments(**t["surface"]), np.array([float(v) for v in t["rows"]]), t
 
 
 TABLE1, S1, T1 = _table("table1")
