@@ -1,14 +1,33 @@
-"""Quadrature rules and the numba kernel for J_ν(a) = E[(Z + a)₊^ν], against closed forms
-and mpmath (the kernel's slow twin)."""
+"""Quadrature rules and the elastic kernel layers against independent slow twins: the tanh-sinh
+θ rule against closed forms; the inner r-rule (partition + Gauss–Legendre, J_ν in closed form)
+against scipy.integrate.quad; the Chebyshev interpolation in g against the direct θ-sum; the
+far tail. (J_ν itself: tests/test_normal_moments.py; the whole chain against mpmath:
+tests/test_contact.py, tests/test_reference.py; the elasto-plastic kernel against its scipy
+twin: tests/test_elastoplastic.py.)"""
 
 import math
 
 import mpmath as mp
 import numpy as np
 import pytest
-from scipy.special import ndtr
+from scipy.integrate import quad
 
-from roughcontact.quadrature import PRESETS, TanhSinh, normal_moment, settings_for, theta_rule
+from roughcontact import SpectralMoments
+from roughcontact.contact import _theta_nodes
+from roughcontact.quadrature import (
+    PRESETS,
+    QuadratureSettings,
+    TanhSinh,
+    elastic_inner_integrals,
+    gaussian_moments,
+    polar_elastic_integrals,
+    settings_for,
+    theta_rule,
+)
+
+TABLE1 = SpectralMoments(0.0625, 8e-5, 8e-4, 1.04e-6, 1.04e-4)
+ANISO = SpectralMoments(1.0, 0.1, 1.0, 0.03, 300.0)  # m04/m40 = 1e4, g(θ) ∈ [0.07, 0.71]
+LOW_BANDWIDTH = SpectralMoments(1.0, 1.0, 1.0, 2.2, 2.2)  # α ≈ 2.2, g(θ) ∈ [2.2, 3.2]
 
 
 @pytest.mark.parametrize(
@@ -43,43 +62,6 @@ def test_tanh_sinh_nodes_are_interior_and_symmetric():
     assert np.sum(w) == pytest.approx(1.0, rel=1e-14)
 
 
-def _J_mpmath(nu, a):
-    """J_ν(a) = Γ(ν+1)/√(2π) e^{−a²/4} D_{−ν−1}(−a) at 30 digits (parabolic cylinder D)."""
-    with mp.workdps(30):
-        a = mp.mpf(a)
-        return float(mp.gamma(nu + 1) / mp.sqrt(2 * mp.pi) * mp.exp(-a * a / 4) * mp.pcfd(-nu - 1, -a))
-
-
-A_VALUES = [-35.0, -10.0, -3.0, -0.5, 0.0, 0.7, 3.0, 9.0, 30.0]
-
-
-@pytest.mark.mpmath
-@pytest.mark.parametrize("preset, tol", [("table", 5e-15), ("plot", 5e-7)])
-def test_normal_moments_against_mpmath(preset, tol):
-    J = normal_moment(A_VALUES, preset)
-    for i, a in enumerate(A_VALUES):
-        for k, nu in enumerate((0.5, 1.0, 1.5)):
-            assert J[i, k] == pytest.approx(_J_mpmath(nu, a), rel=tol), (a, nu)
-
-
-def test_first_moment_closed_form():
-    # J_1(a) = a Φ(a) + φ(a) (GW's F_1); evaluated where the closed form has no cancellation
-    a = np.array([-2.0, -1.0, 0.0, 1.0, 4.0])
-    closed = a * ndtr(a) + np.exp(-0.5 * a * a) / math.sqrt(2 * math.pi)
-    np.testing.assert_allclose(normal_moment(a)[:, 1], closed, rtol=1e-14)
-
-
-def test_moments_deep_in_the_tail_underflow_to_zero():
-    J = normal_moment([-40.0, -1e3, -1e300])
-    assert np.all(np.isfinite(J)) and np.all(J >= 0)
-    assert np.all(J[1:] == 0.0) and np.all(J[0] < 1e-300)
-
-
-def test_normal_moment_rejects_nan():
-    with pytest.raises(ValueError, match="finite"):
-        normal_moment([0.0, np.nan])
-
-
 def test_theta_rule_integrates_smooth_functions_with_breakpoints():
     th, w = theta_rule([0.3, 1.0], settings_for("table"))
     assert np.all(np.diff(th) > 0) and th[0] > 0 and th[-1] < math.pi / 2
@@ -91,5 +73,79 @@ def test_theta_rule_integrates_smooth_functions_with_breakpoints():
 
 def test_presets_resolve_and_unknown_names_fail():
     assert settings_for("table") is PRESETS["table"]
+    st = QuadratureSettings(3, 5, 4)
+    assert (st.r_nodes, st.t_nodes, st.g_tol) == (24, 20, 1e-13)
     with pytest.raises(ValueError, match="unknown accuracy preset"):
         settings_for("fastest")
+
+
+# --------------------------------------------------------------------------------------
+# the inner r-integral against scipy.integrate.quad (J_ν from the tables, checked elsewhere)
+# --------------------------------------------------------------------------------------
+def _inner_by_quad(g, l):
+    """∫₀^∞ r^p e^{−r²/2} J_ν(r g − l) dr for (p, ν) = (2, 1), (5/2, 3/2), (5/2, 1/2), adaptive
+    Gauss–Kronrod with the kinks of the integrand's shape (r = l/g, the Gaussian centre
+    l g/(1 + g²)) as break points, relative tolerance 2e-14."""
+    q = 1.0 + g * g
+    centre = max(l * g / q, 0.0)
+    top = centre + 14.0 + (math.sqrt(2.0 * (45.0 + 0.5 * l * l / q)) if l > 0 else 0.0)
+    pts = sorted({p for p in (l / g, centre, centre + 1.0 / math.sqrt(q)) if 0.0 < p < top})
+    out = []
+    for p_pow, col in ((2.0, 2), (2.5, 3), (2.5, 1)):
+        def f(r, p_pow=p_pow, col=col):
+            return r**p_pow * math.exp(-0.5 * r * r) * gaussian_moments(r * g - l)[0, col]
+
+        val, _ = quad(f, 0.0, top, points=pts or None, epsabs=0.0, epsrel=2e-14, limit=400)
+        out.append(val)
+    return np.array(out)
+
+
+G_VALUES = [0.07, 0.4, 1.4, 3.0]
+L_VALUES = [-3.0, 0.0, 0.5, 2.0, 6.0, 20.0]
+
+
+@pytest.mark.parametrize("preset, rtol", [("table", 1e-12), ("plot", 1e-8)])
+def test_inner_r_rule_matches_scipy_quad(preset, rtol):
+    """Measured (g ≤ 3, l ∈ [−3, 20]): table ≤ 1.2e-14, plot ≤ 2.8e-9."""
+    g, l = np.meshgrid(G_VALUES, L_VALUES, indexing="ij")
+    got = elastic_inner_integrals(g.ravel(), l.ravel(), preset)
+    for k, (gk, lk) in enumerate(zip(g.ravel(), l.ravel())):
+        np.testing.assert_allclose(got[k], _inner_by_quad(gk, lk), rtol=rtol, err_msg=f"g={gk}, l={lk}")
+
+
+def test_inner_integrals_are_positive_and_underflow_cleanly():
+    I = elastic_inner_integrals([0.4, 0.4, 0.4], [30.0, 60.0, 1e4])
+    assert np.all(np.isfinite(I)) and np.all(I >= 0)
+    assert np.all(I[0] > 0) and np.all(I[0] < 1e-150) and np.all(I[2] == 0.0)
+
+
+# --------------------------------------------------------------------------------------
+# the θ-sum: Chebyshev interpolation in g against the direct sum over θ-nodes
+# --------------------------------------------------------------------------------------
+@pytest.mark.parametrize("surface", [TABLE1, ANISO, LOW_BANDWIDTH], ids=["table1", "aniso1e4", "alpha2.2"])
+def test_g_interpolation_matches_direct_theta_sum(surface):
+    """The interpolation converged (used) and agrees with integrating every θ-node (measured
+    ≤ 6e-15 at "table")."""
+    w_area, w_load, _, g = _theta_nodes(surface, "exact", "table")
+    l = surface.l_from_s(np.array([-1.0, 0.5, 2.0, 5.0, 12.0]))
+    fast, used = polar_elastic_integrals(l, w_area, w_load, g, "table", return_used=True)
+    slow = polar_elastic_integrals(l, w_area, w_load, g, "table", interpolate=False)
+    assert np.all(used)
+    np.testing.assert_allclose(fast, slow, rtol=1e-12)
+
+
+def test_far_tail_is_zero_or_tiny_never_nan():
+    w_area, w_load, _, g = _theta_nodes(TABLE1, "exact", "table")
+    l = TABLE1.l_from_s(np.array([30.0, 60.0, 1e3]))
+    out = polar_elastic_integrals(l, w_area, w_load, g, "table")
+    assert np.all(np.isfinite(out)) and np.all(out >= 0)
+    assert np.all(out[0] > 0) and np.all(out[0] < 1e-150) and np.all(out[2] == 0.0)
+
+
+def test_threads_and_serial_give_the_same_numbers():
+    """Many separations run split over threads, few serially: the same per-separation sums."""
+    w_area, w_load, _, g = _theta_nodes(TABLE1, "exact", "plot")
+    l = TABLE1.l_from_s(np.linspace(-1.0, 6.0, 24))
+    batch = polar_elastic_integrals(l, w_area, w_load, g, "plot")
+    single = np.array([polar_elastic_integrals([x], w_area, w_load, g, "plot")[0] for x in l])
+    np.testing.assert_array_equal(batch, single)

@@ -31,12 +31,15 @@ separately as ``stiffness_jump``), so ``stiffness`` is −dW/dh in both cases.
 
 Integrators
 -----------
-``method="production"``: numba (quadrature._polar_elastoplastic_kernel): θ-nodes of the
-elastic integrator (split at the axis turn θ*, the peak of g and the kinks of the Hertz
-option) carrying f1, f2, f3, c, g, tc1; r on the Gaussian window split at its peak; the
-t-integral cut at t_c and t_p and each piece intersected with the window of φ(t − a),
-a = r g − l, split at a, each on a tanh-sinh rule (levels: quadrature.ELASTOPLASTIC_PRESETS,
-a finer r-rule than the elastic presets, for the parts). Parallel over (s, θ-node) pairs.
+``method="production"``: numba (quadrature._ep_pairs): θ-nodes of the elastic integrator
+(split at the axis turn θ*, the peak of g and the kinks of the Hertz option) carrying f1, f2,
+f3, c, g, tc1; r on the partition of the elastic kernel plus the r where t_c and t_p cross
+the bulk of the t-mass (and r_c/2, 2 r_c), Gauss–Legendre on each piece. Per r-node the
+t-integral is closed-form where the Gaussian window of φ(t − a), a = r g − l, lies in one
+regime (elastic: J_{1/2}, J_1, J_{3/2}(a); plastic: J_0, J_1), otherwise the elastic piece
+[lo, t_c] (in √t) and the elasto-plastic piece [t_c, t_p] (in ln t near 0) are integrated by
+Gauss–Legendre and the plastic tail beyond t_p is closed-form (levels:
+quadrature.ELASTOPLASTIC_PRESETS). Parallel over (s, θ-node) pairs.
 ``method="reference"``: the slow twin (:func:`reference_integrals`) — scipy
 ``integrate.cubature`` (adaptive Gauss–Kronrod 21) over θ (polynomially mapped to flatten
 the end-point singularities) and, nested, over r; the inner t-integral by Gauss–Legendre

@@ -1,32 +1,59 @@
 """Quadrature rules and the numba production kernels: the only place integration rules live.
 
-The integrals are those of docs/derivation.md in polar form: an outer θ-integral whose
-nodes carry the precomputed ellipse data, a middle r-integral and an inner t-integral
-(the interference) against the Gaussian φ(t + l − r g(θ)). Every rule is a tanh-sinh
-(double-exponential) rule on a finite window: it converges exponentially even with the
-endpoint singularities of the integrand (t^{1/2} at t = 0, r^{5/2} at r = 0, the
-logarithmic singularities of the Hertz factors at θ → 0, π/2). The windows are cut where
-the Gaussian factors fall below e^{−TAIL} of their peak (TAIL = 50, i.e. < 2e-22).
+The integrals are those of docs/derivation.md in polar form, θ outside, r in the middle and
+the interference t inside, against the Gaussian φ(t + l − r g(θ)). What makes them fast
+(docs/performance.md has the measurements):
 
-Kernels are plain loops over arrays (fastmath off); the Python API in contact.py validates
-inputs. Each kernel has a slow twin: the mpmath integrator in reference.py.
+* t in closed form. Elastic summits need only J_ν(a) = ∫₀^∞ t^ν φ(t − a) dt, ν = 1/2, 1, 3/2,
+  evaluated from the Chebyshev tables of normal_moments.py (≤ 7e-16 relative, exact zero
+  below a ≈ −38.6) instead of ~200 tanh-sinh nodes per (θ, r) node. Plastic summits need
+  J_0, J_1 at a shifted argument; only the finite elastic and elasto-plastic t-pieces of a
+  summit that straddles first yield are integrated numerically (Gauss–Legendre).
+* r on a partition that follows the integrand: for l > 0 the factor e^{−r²/2} φ(r g − l)
+  is a Gaussian of width 1/√(1 + g²) centred near r = l g/(1 + g²) while a = r g − l < 0,
+  and beyond r = l/g (a > 0) J_ν is algebraic and e^{−r²/2} sets the decay; the pieces are
+  cut at the modes of both parts, at l/g and inside the long right tail, each piece a
+  Gauss–Legendre rule (in u = √r next to r = 0, where r^{5/2} is not smooth). Everything is
+  scaled by e^{S}, S = l²/(2(1 + g²)), so nothing underflows before the final product.
+* (elastic) θ only through g(θ): the inner r-integrals are computed at Chebyshev–Lobatto
+  nodes in g (17, then 33, 65 if needed: nested) and ln of the scaled integrals is
+  interpolated; the θ-sum then costs one short Clenshaw series per θ-node. If the series has
+  not converged to the preset's tolerance at 65 nodes, every θ-node is integrated directly.
+
+θ is a composite tanh-sinh rule (split at the axis turn θ*, the peak of g and the Hertz
+kinks): it converges exponentially despite the logarithmic end-point singularities of the
+Hertz factors at θ → 0, π/2.
+
+Kernels are plain loops over arrays (fastmath off, cache=True); the Python API in contact.py
+and elastoplastic.py validates inputs. Slow twins: the J_ν tables against mpmath
+(tests/test_normal_moments.py); the r-rule against scipy.integrate.quad and the
+g-interpolation against the direct θ-sum (tests/test_quadrature.py); the whole elastic chain
+against the mpmath integrator in reference.py (tests/test_contact.py, test_reference.py); the
+elasto-plastic kernel against the scipy twin elastoplastic.reference_integrals
+(tests/test_elastoplastic.py).
 """
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
 import numba
 import numpy as np
 
+from . import normal_moments
+
 __all__ = [
     "TanhSinh",
+    "gauss_legendre",
     "QuadratureSettings",
     "PRESETS",
     "settings_for",
     "theta_rule",
+    "gaussian_moments",
     "normal_moment",
+    "elastic_inner_integrals",
     "polar_elastic_integrals",
     "ELASTOPLASTIC_PRESETS",
     "elastoplastic_settings_for",
@@ -34,11 +61,22 @@ __all__ = [
     "polar_elastoplastic_integrals",
 ]
 
-#: -ln of the relative size at which Gaussian tails are cut (e^-50 ≈ 2e-22).
-TAIL = 50.0
+#: −ln of the relative size at which Gaussian tails are cut (e^-40 ≈ 4e-18).
+TAIL = 40.0
+_SPAN = math.sqrt(2.0 * TAIL)
 _INV_SQRT_2PI = 1.0 / math.sqrt(2.0 * math.pi)
-#: below this a, J_ν(a) ≤ φ(a) < 1e-323 is zero in double precision
-_A_UNDERFLOW = -38.6
+_SPLITTER = 134217729.0  # 2^27 + 1 (Veltkamp split of a double into two 26-bit halves)
+_EXP_UNDERFLOW = 745.2  # exp(−745.2) < the smallest subnormal double
+#: powers (p, ν) used to place the r-breakpoints: the middle of the (2, 1), (5/2, 3/2),
+#: (5/2, 1/2) of the area, load and stiffness integrands
+_P_MODE = 2.5
+_NU_MODE = 1.0
+#: Chebyshev–Lobatto grids in g: 16, 32, 64 intervals (nested)
+_N_G_START = 16
+_N_G_MAX = 64
+#: the batch is split over threads only above this many separations (a parallel region
+#: costs 10–500 µs on a loaded 2-core machine; one separation is 20–100 µs of work)
+_PARALLEL_MIN = 8
 
 
 @dataclass(frozen=True)
@@ -67,25 +105,49 @@ class TanhSinh:
         return y, w
 
 
+@functools.lru_cache(maxsize=32)
+def gauss_legendre(n: int) -> tuple[np.ndarray, np.ndarray]:
+    """n-point Gauss–Legendre nodes and weights on [0, 1] (cached: do not modify). Writable
+    on purpose: numba types read-only arrays differently, and one signature per kernel keeps
+    one entry per kernel in numba's on-disk cache (docs/performance.md, caching)."""
+    x, w = np.polynomial.legendre.leggauss(n)
+    return 0.5 * (x + 1.0), 0.5 * w
+
+
 @dataclass(frozen=True)
 class QuadratureSettings:
-    """Levels of the tanh-sinh rules in θ (per sub-interval), r and t."""
+    """Refinement levels of the production rules (higher = finer in that dimension).
+
+    theta_level  tanh-sinh level of the θ rule (step 2^-level, per θ sub-interval);
+    r_level      Gauss–Legendre nodes per r-piece: ``r_nodes`` = 4·r_level + 4;
+    t_level      elastic: tolerance of the Chebyshev interpolation in g,
+                 ``g_tol`` = 10^-(2·t_level + 5) (absolute on ln I); elasto-plastic:
+                 Gauss–Legendre nodes per numerical t-piece, ``t_nodes`` = 4·t_level + 4.
+    """
 
     theta_level: int
     r_level: int
     t_level: int
 
-    def rules(self):
-        return tuple(TanhSinh(lv).nodes_weights for lv in (self.theta_level, self.r_level, self.t_level))
+    @property
+    def r_nodes(self) -> int:
+        return 4 * self.r_level + 4
+
+    @property
+    def t_nodes(self) -> int:
+        return 4 * self.t_level + 4
+
+    @property
+    def g_tol(self) -> float:
+        return 10.0 ** -(2 * self.t_level + 5)
 
 
-#: Named accuracy presets (levels of the θ, r, t rules). Measured against levels (5, 5, 5)
-#: and (6, 6, 6) for s ∈ [−1, 30] on the Table 1 and Table 2 surfaces (tests/test_contact.py):
-#: "table" ≤ 1e-14 relative (~30 ms per separation on one core); "plot" ≤ 3e-6 (≤ 1e-7 for
-#: s ≤ 7; ~10 ms).
+#: Named accuracy presets of the elastic integrals. Measured against the mpmath reference
+#: (docs/performance.md; tests/test_contact.py, tests/test_quadrature.py): "table" ≤ 1e-13
+#: relative for g(θ) ≤ 3 (all surfaces with μ ≳ 0.1), "plot" ≤ 1e-8.
 PRESETS: dict[str, QuadratureSettings] = {
-    "table": QuadratureSettings(theta_level=4, r_level=4, t_level=4),
-    "plot": QuadratureSettings(theta_level=3, r_level=4, t_level=3),
+    "table": QuadratureSettings(theta_level=4, r_level=5, t_level=4),
+    "plot": QuadratureSettings(theta_level=4, r_level=3, t_level=2),
 }
 
 
@@ -103,127 +165,6 @@ def settings_for(accuracy, presets: dict[str, QuadratureSettings] | None = None)
         ) from None
 
 
-# ---------------------------------------------------------------------------------------
-# numba kernels
-# ---------------------------------------------------------------------------------------
-@numba.njit(cache=True)
-def _t_window(a):
-    """Window [lo, hi] of t ≥ 0 outside which φ(t − a) is below e^{−TAIL} of its maximum."""
-    span = math.sqrt(2.0 * TAIL)
-    if a > 0.0:
-        return max(0.0, a - span), a + span
-    # maximum at t = 0: exp(−(t − a)²/2)/exp(−a²/2) = exp(−|a| t − t²/2) = e^{−TAIL}
-    # at t = −|a| + √(a² + 2 TAIL), i.e. a + √(a² + 2 TAIL) since a ≤ 0
-    return 0.0, a + math.sqrt(a * a + 2.0 * TAIL)
-
-
-@numba.njit(cache=True)
-def _normal_moments_on(lo, hi, a, y_t, w_t):
-    """Tanh-sinh sums of t^ν φ(t − a) over [lo, hi] for ν = 1/2, 1, 3/2."""
-    width = hi - lo
-    j_half = 0.0
-    j_one = 0.0
-    j_three_half = 0.0
-    for k in range(y_t.shape[0]):
-        t = lo + width * y_t[k]
-        d = t - a
-        wphi = width * w_t[k] * _INV_SQRT_2PI * math.exp(-0.5 * d * d)
-        sq = math.sqrt(t)
-        j_half += wphi * sq
-        j_one += wphi * t
-        j_three_half += wphi * t * sq
-    return j_half, j_one, j_three_half
-
-
-@numba.njit(cache=True)
-def _normal_moments(a, y_t, w_t):
-    """(J_{1/2}, J_1, J_{3/2}) at a, with J_ν(a) = ∫₀^∞ t^ν φ(t − a) dt = E[(Z + a)₊^ν].
-
-    For a > 0 the window is split at the peak t = a so that neither piece holds an
-    interior bump (tanh-sinh spends its nodes near the ends of an interval)."""
-    if a < _A_UNDERFLOW:  # J_ν(a) < φ(a) underflows: exactly zero
-        return 0.0, 0.0, 0.0
-    lo, hi = _t_window(a)
-    if a > lo:
-        h1, o1, t1 = _normal_moments_on(lo, a, a, y_t, w_t)
-        h2, o2, t2 = _normal_moments_on(a, hi, a, y_t, w_t)
-        return h1 + h2, o1 + o2, t1 + t2
-    return _normal_moments_on(lo, hi, a, y_t, w_t)
-
-
-@numba.njit(cache=True)
-def _normal_moments_array(a_values, y_t, w_t, out):
-    for i in range(a_values.shape[0]):
-        out[i, 0], out[i, 1], out[i, 2] = _normal_moments(a_values[i], y_t, w_t)
-
-
-@numba.njit(cache=True)
-def _r_window(g, l):
-    """Window (lo, peak, hi) of r > 0 holding the mass of r^k e^{−r²/2} J_ν(r g − l).
-
-    The log-integrand is −r²/2 − (r g − l)²/2 (+ slowly varying terms) below r = l/g and
-    −r²/2 above it: its peak is near r* = l g/(1 + g²) with curvature 1 + g² below.
-    """
-    q = 1.0 + g * g
-    span = math.sqrt(2.0 * TAIL)
-    rstar = l * g / q if l > 0.0 else 0.0
-    lo = max(0.0, rstar - span / math.sqrt(q) - 1.0)
-    return lo, rstar, rstar + span
-
-
-@numba.njit(cache=True)
-def _r_sums(lo, hi, g, l, y_r, w_r, y_t, w_t):
-    """∫_lo^hi r² e^{−r²/2} (J_1, r^{1/2} J_{3/2}, r^{1/2} J_{1/2})(r g − l) dr."""
-    width = hi - lo
-    acc_a = 0.0
-    acc_w = 0.0
-    acc_k = 0.0
-    for k in range(y_r.shape[0]):
-        r = lo + width * y_r[k]
-        j_half, j_one, j_three_half = _normal_moments(r * g - l, y_t, w_t)
-        base = width * w_r[k] * r * r * math.exp(-0.5 * r * r)
-        sr = math.sqrt(r)
-        acc_a += base * j_one
-        acc_w += base * sr * j_three_half
-        acc_k += base * sr * j_half
-    return acc_a, acc_w, acc_k
-
-
-@numba.njit(cache=True, parallel=True)
-def _polar_elastic_kernel(l_values, w_area, w_load, g, y_r, w_r, y_t, w_t, out):
-    """out[i] = (I_area, I_load, I_stiffness) at l_values[i] (docs/derivation.md):
-
-    I_area  = Σ_θ w_area  ∫ r² e^{−r²/2} J_1(r g − l) dr
-    I_load  = Σ_θ w_load  ∫ r^{5/2} e^{−r²/2} J_{3/2}(r g − l) dr
-    I_stiff = Σ_θ w_load  ∫ r^{5/2} e^{−r²/2} J_{1/2}(r g − l) dr
-
-    The r-window is split at the peak r* (as the t-window at t = a) so that no piece
-    holds an interior bump.
-    """
-    for i in numba.prange(l_values.shape[0]):
-        l = l_values[i]
-        area = 0.0
-        load = 0.0
-        stiff = 0.0
-        for j in range(g.shape[0]):
-            lo, peak, hi = _r_window(g[j], l)
-            if peak > lo:
-                a1, w1, k1 = _r_sums(lo, peak, g[j], l, y_r, w_r, y_t, w_t)
-                a2, w2, k2 = _r_sums(peak, hi, g[j], l, y_r, w_r, y_t, w_t)
-                acc_a, acc_w, acc_k = a1 + a2, w1 + w2, k1 + k2
-            else:
-                acc_a, acc_w, acc_k = _r_sums(lo, hi, g[j], l, y_r, w_r, y_t, w_t)
-            area += w_area[j] * acc_a
-            load += w_load[j] * acc_w
-            stiff += w_load[j] * acc_k
-        out[i, 0] = area
-        out[i, 1] = load
-        out[i, 2] = stiff
-
-
-# ---------------------------------------------------------------------------------------
-# Python API (inputs validated here, not in the kernels)
-# ---------------------------------------------------------------------------------------
 def theta_rule(breakpoints, settings: QuadratureSettings) -> tuple[np.ndarray, np.ndarray]:
     """Composite tanh-sinh nodes and weights on (0, π/2), split at ``breakpoints``
     (where the integrand is not smooth: the axis turn θ*, the clip of eq. (33))."""
@@ -236,38 +177,439 @@ def theta_rule(breakpoints, settings: QuadratureSettings) -> tuple[np.ndarray, n
     return np.concatenate(nodes), np.concatenate(weights)
 
 
-def normal_moment(a, accuracy="table") -> np.ndarray:
-    """J_ν(a) = E[(Z + a)₊^ν] for ν = 1/2, 1, 3/2 (columns), Z ~ N(0, 1). GW's F_ν(d) = J_ν(−d)."""
+# ---------------------------------------------------------------------------------------
+# J_ν(a) from the Chebyshev tables (normal_moments.py)
+# ---------------------------------------------------------------------------------------
+@functools.lru_cache(maxsize=1)
+def _moment_table() -> np.ndarray:
+    """normal_moments.table() as (piece, power, ν) for contiguous loads; passed to the kernels
+    as an argument (numba would freeze a global array into its cache, which is invalidated
+    only when this file changes, not the data file)."""
+    return np.ascontiguousarray(np.transpose(normal_moments.table(), (0, 2, 1)))
+
+
+_N_SIDE = normal_moments.N_SIDE
+_X_SPLIT = normal_moments.X_SPLIT
+assert normal_moments.WIDTH == 1.0 and normal_moments.NU == (0.0, 0.5, 1.0, 1.5)
+assert normal_moments.N_COEF == 17  # _estrin17
+
+
+@numba.njit(cache=True)
+def _estrin17(cr, q, y, y2, y4, y8, y16):
+    """Σ_{k=0}^{16} cr[k, q] y^k by Estrin's scheme (depth 5 instead of Horner's 16)."""
+    p0 = cr[0, q] + cr[1, q] * y
+    p1 = cr[2, q] + cr[3, q] * y
+    p2 = cr[4, q] + cr[5, q] * y
+    p3 = cr[6, q] + cr[7, q] * y
+    p4 = cr[8, q] + cr[9, q] * y
+    p5 = cr[10, q] + cr[11, q] * y
+    p6 = cr[12, q] + cr[13, q] * y
+    p7 = cr[14, q] + cr[15, q] * y
+    r0 = (p0 + p1 * y2) + (p2 + p3 * y2) * y4
+    r1 = (p4 + p5 * y2) + (p6 + p7 * y2) * y4
+    return r0 + r1 * y8 + cr[16, q] * y16
+
+
+@numba.njit(cache=True)
+def _poly4(c, row, y):
+    """The four polynomials of table row ``row`` at y ∈ [−1, 1]."""
+    cr = c[row]
+    y2 = y * y
+    y4 = y2 * y2
+    y8 = y4 * y4
+    y16 = y8 * y8
+    return (_estrin17(cr, 0, y, y2, y4, y8, y16), _estrin17(cr, 1, y, y2, y4, y8, y16),
+            _estrin17(cr, 2, y, y2, y4, y8, y16), _estrin17(cr, 3, y, y2, y4, y8, y16))
+
+
+@numba.njit(cache=True)
+def _moments(a, e, c):
+    """(J_0, J_{1/2}, J_1, J_{3/2})(a) · e^{e} (normal_moments.py: a < 0 tabulates
+    G_ν = J_ν/φ, so the Gaussian factor and e^{e} are one exact exp, which underflows to 0
+    cleanly; e lets the kernels carry a scale without over- or underflow)."""
+    if a < 0.0:
+        x = -a
+        if x > 1e150 or 0.5 * x * x - e > _EXP_UNDERFLOW:  # the product underflows: exactly 0
+            return 0.0, 0.0, 0.0, 0.0
+        if x < _X_SPLIT:
+            k = int(x)
+            g0, g1, g2, g3 = _poly4(c, k, 2.0 * (x - k) - 1.0)
+        else:
+            v = _X_SPLIT / x
+            t0, t1, t2, t3 = _poly4(c, 2 * _N_SIDE, 2.0 * v * v - 1.0)
+            ix = 1.0 / x
+            sx = math.sqrt(ix)
+            g0 = t0 * ix
+            g1 = t1 * ix * sx
+            g2 = t2 * ix * ix
+            g3 = t3 * ix * ix * sx
+        # x² = p + err exactly (Veltkamp/Dekker split): exp(−x²/2) to ≤ 1 ulp for |a| ≤ 38
+        # (exp(−0.5·fl(x²)) alone would lose up to x²·1e-16 ≈ 8e-14 at a = −38)
+        c_ = _SPLITTER * x
+        hi = c_ - (c_ - x)
+        lo = x - hi
+        p = x * x
+        err = ((hi * hi - p) + 2.0 * hi * lo) + lo * lo
+        f = math.exp(e - 0.5 * p) * (1.0 - 0.5 * err) * _INV_SQRT_2PI
+        return g0 * f, g1 * f, g2 * f, g3 * f
+    f = math.exp(e)
+    if a < _X_SPLIT:
+        k = int(a)
+        j0, j1, j2, j3 = _poly4(c, _N_SIDE + k, 2.0 * (a - k) - 1.0)
+        return j0 * f, j1 * f, j2 * f, j3 * f
+    v = _X_SPLIT / a
+    t0, t1, t2, t3 = _poly4(c, 2 * _N_SIDE + 1, 2.0 * v * v - 1.0)
+    sa = math.sqrt(a)
+    return t0 * f, t1 * sa * f, t2 * a * f, t3 * a * sa * f
+
+
+@numba.njit(cache=True)
+def _moments_array(a_values, c, out):
+    for i in range(a_values.shape[0]):
+        out[i, 0], out[i, 1], out[i, 2], out[i, 3] = _moments(a_values[i], 0.0, c)
+
+
+def gaussian_moments(a) -> np.ndarray:
+    """J_ν(a) = E[(Z + a)₊^ν] for ν = 0, 1/2, 1, 3/2 (columns), Z ~ N(0, 1), from the
+    Chebyshev tables of normal_moments.py: ≤ 7e-16 relative for every a (measured against
+    mpmath, tests/test_normal_moments.py); exactly 0 below a ≈ −38.6, where J_ν < φ(a)
+    underflows."""
     a = np.ascontiguousarray(np.atleast_1d(np.asarray(a, dtype=float)))
     if not np.all(np.isfinite(a)):
         raise ValueError("normal_moment: arguments must be finite")
-    _, _, (y_t, w_t) = settings_for(accuracy).rules()
-    out = np.empty((a.shape[0], 3))
-    _normal_moments_array(a, y_t, w_t, out)
+    out = np.empty((a.shape[0], 4))
+    _moments_array(a, _moment_table(), out)
     return out
 
 
-def polar_elastic_integrals(l_values, w_area, w_load, g, accuracy="table") -> np.ndarray:
+def normal_moment(a, accuracy=None) -> np.ndarray:
+    """J_ν(a) for ν = 1/2, 1, 3/2 (columns) — :func:`gaussian_moments` without J_0. GW's
+    F_ν(d) = J_ν(−d). ``accuracy`` is accepted for compatibility and ignored (closed form)."""
+    return gaussian_moments(a)[:, 1:]
+
+
+# ---------------------------------------------------------------------------------------
+# the r-partition (shared by the elastic and elasto-plastic kernels)
+# ---------------------------------------------------------------------------------------
+@numba.njit(cache=True)
+def _mode_above(g, l):
+    """The mode r_B > max(l/g, 0) of r^p (r g − l)^ν e^{−r²/2} (p, ν = _P_MODE, _NU_MODE):
+    the root of −r + p/r + ν g/(r g − l) (decreasing from +∞ to −∞), safeguarded Newton."""
+    b = l / g if l > 0.0 else 0.0
+    lo = b
+    hi = b + math.sqrt(_P_MODE + _NU_MODE) + 2.0  # f(hi) < 0 (docs/performance.md)
+    r = 0.5 * (lo + hi)
+    for _ in range(60):
+        a = r * g - l
+        f = -r + _P_MODE / r + _NU_MODE * g / a
+        if f > 0.0:
+            lo = r
+        else:
+            hi = r
+        df = -1.0 - _P_MODE / (r * r) - _NU_MODE * g * g / (a * a)
+        rn = r - f / df
+        if not (lo < rn < hi):
+            rn = 0.5 * (lo + hi)
+        if abs(rn - r) <= 1e-12 * r:
+            return rn
+        r = rn
+    return r
+
+
+@numba.njit(cache=True)
+def _r_cuts(g, l, cuts):
+    """Break points of the r-integral of r^p e^{−r²/2} J_ν(r g − l); returns (n, S, sqrt0).
+
+    cuts[0:n] increasing. With q = 1 + g², for l > 0 the integrand is e^{−S} times a Gaussian
+    of width 1/√q centred near r_g = l g/q while a = r g − l < 0 (S = l²/(2q)); its mode r_A
+    (with the power r^p) and the window r_A ± (√(2 TAIL) + 1)/√q are break points. If l/g
+    (a = 0) lies inside, the algebraic part beyond it has its own mode r_B and decays like
+    e^{−r²/2}: break points l/g, r_B, √(r_B² + 8) (decay e^{−4}) and the end √(2(TAIL + S)) + 1.
+    For l ≤ 0 only the algebraic part exists (from r = 0). ``sqrt0``: the integrand is not
+    negligible at r = 0 (then the first piece is integrated in u = √r)."""
+    q = 1.0 + g * g
+    if l > 0.0:
+        S = 0.5 * l * l / q
+        sig = 1.0 / math.sqrt(q)
+        b = l / g
+        r_a = min((l * g + math.sqrt(l * l * g * g + 4.0 * _P_MODE * q)) / (2.0 * q), b)
+        lo = max(0.0, r_a - (_SPAN + 1.0) * sig)
+        sqrt0 = 0.5 * q * r_a * r_a < 10.0
+        cuts[0] = lo
+        n = 1
+        if r_a > lo:
+            cuts[n] = r_a
+            n += 1
+        top = r_a + (_SPAN + 1.0) * sig
+        if b >= top:  # the algebraic part lies beyond the Gaussian window: negligible
+            cuts[n] = top
+            return n + 1, S, sqrt0
+        if b > cuts[n - 1]:
+            cuts[n] = b
+            n += 1
+    else:
+        S = 0.0
+        sqrt0 = True
+        cuts[0] = 0.0
+        n = 1
+    r_b = _mode_above(g, l)
+    hi = max(r_b, math.sqrt(2.0 * (TAIL + S))) + 1.0
+    if r_b > cuts[n - 1]:
+        cuts[n] = r_b
+        n += 1
+    r1 = math.sqrt(r_b * r_b + 8.0)
+    if r1 < hi:
+        cuts[n] = r1
+        n += 1
+    cuts[n] = hi
+    return n + 1, S, sqrt0
+
+
+# ---------------------------------------------------------------------------------------
+# elastic kernels
+# ---------------------------------------------------------------------------------------
+@numba.njit(cache=True)
+def _elastic_piece(lo, hi, g, l, S, y, w, jt, in_sqrt):
+    """e^{S} ∫_lo^hi r² e^{−r²/2} (J_1, r^{1/2} J_{3/2}, r^{1/2} J_{1/2})(r g − l) dr
+    (Gauss–Legendre in r, or in u = √r when ``in_sqrt``)."""
+    acc_a = 0.0
+    acc_w = 0.0
+    acc_k = 0.0
+    if in_sqrt:
+        u0 = math.sqrt(lo)
+        du = math.sqrt(hi) - u0
+        for k in range(y.shape[0]):
+            u = u0 + du * y[k]
+            r = u * u
+            _, jh, j1, j3 = _moments(r * g - l, S - 0.5 * r * r, jt)
+            base = 2.0 * du * w[k] * u * r * r  # dr = 2u du
+            acc_a += base * j1
+            acc_w += base * u * j3
+            acc_k += base * u * jh
+    else:
+        width = hi - lo
+        for k in range(y.shape[0]):
+            r = lo + width * y[k]
+            _, jh, j1, j3 = _moments(r * g - l, S - 0.5 * r * r, jt)
+            base = width * w[k] * r * r
+            sr = math.sqrt(r)
+            acc_a += base * j1
+            acc_w += base * sr * j3
+            acc_k += base * sr * jh
+    return acc_a, acc_w, acc_k
+
+
+@numba.njit(cache=True)
+def _elastic_inner(g, l, y, w, jt, cuts):
+    """(I_area, I_load, I_stiffness)·e^{S} and S for one g (docs/derivation.md):
+    I_area = ∫ r² e^{−r²/2} J_1(r g − l) dr, I_load = ∫ r^{5/2} e^{−r²/2} J_{3/2}(…) dr,
+    I_stiffness = ∫ r^{5/2} e^{−r²/2} J_{1/2}(…) dr, on the partition of _r_cuts."""
+    n, S, sqrt0 = _r_cuts(g, l, cuts)
+    acc_a = 0.0
+    acc_w = 0.0
+    acc_k = 0.0
+    for p in range(n - 1):
+        lo = cuts[p]
+        hi = cuts[p + 1]
+        if hi > lo:
+            in_sqrt = lo < 0.1 * hi and (lo > 0.0 or sqrt0)
+            a, b, k = _elastic_piece(lo, hi, g, l, S, y, w, jt, in_sqrt)
+            acc_a += a
+            acc_w += b
+            acc_k += k
+    return acc_a, acc_w, acc_k, S
+
+
+@numba.njit(cache=True)
+def _scale_of(g, l):
+    """S = l²/(2(1 + g²)) for l > 0, else 0 (the scale of _r_cuts)."""
+    return 0.5 * l * l / (1.0 + g * g) if l > 0.0 else 0.0
+
+
+@numba.njit(cache=True)
+def _elastic_direct(l, w_area, w_load, g, y, w, jt, cuts):
+    """The θ-sum with the inner integrals at every θ-node."""
+    area = 0.0
+    load = 0.0
+    stiff = 0.0
+    for j in range(g.shape[0]):
+        a, b, k, S = _elastic_inner(g[j], l, y, w, jt, cuts)
+        f = math.exp(-S)
+        area += w_area[j] * a * f
+        load += w_load[j] * b * f
+        stiff += w_load[j] * k * f
+    return area, load, stiff
+
+
+@numba.njit(cache=True)
+def _elastic_interpolated(l, w_area, w_load, g, xg, g_mid, g_half, y, w, tol, cosm, jt, cuts, vals, coef):
+    """The θ-sum with ln(e^{S} I_q)(g) interpolated at Chebyshev–Lobatto nodes in g.
+
+    vals[m] holds the values at node m of the finest grid (_N_G_MAX intervals); grids of 16,
+    32, 64 intervals nest. Converged when the last three coefficients of every series are
+    ≤ tol. Returns (area, load, stiffness, ok); ok False: not converged or a value ≤ 0."""
+    n_max = _N_G_MAX
+    N = _N_G_START
+    stride = n_max // N
+    first = True
+    while True:
+        for k in range(N + 1):
+            if not first and k % 2 == 0:
+                continue  # on the previous grid
+            m = k * stride
+            gk = g_mid + g_half * cosm[m]
+            a, b, kk, _ = _elastic_inner(gk, l, y, w, jt, cuts)
+            if not (a > 0.0 and b > 0.0 and kk > 0.0 and a < math.inf and b < math.inf and kk < math.inf):
+                return 0.0, 0.0, 0.0, False
+            vals[m, 0] = math.log(a)
+            vals[m, 1] = math.log(b)
+            vals[m, 2] = math.log(kk)
+        first = False
+        err = 0.0
+        for j in range(N + 1):
+            for q in range(3):
+                s = 0.0
+                for k in range(N + 1):
+                    f = vals[k * stride, q]
+                    if k == 0 or k == N:
+                        f *= 0.5
+                    s += f * cosm[(j * k * stride) % (2 * n_max)]
+                s *= 2.0 / N
+                if j == 0 or j == N:
+                    s *= 0.5
+                coef[j, q] = s
+                if j >= N - 2:
+                    err = max(err, abs(s))
+        if err <= tol:
+            break
+        if N == n_max:
+            return 0.0, 0.0, 0.0, False
+        N *= 2
+        stride //= 2
+    area = 0.0
+    load = 0.0
+    stiff = 0.0
+    for j in range(g.shape[0]):
+        x = xg[j]
+        x2 = 2.0 * x
+        b0 = b1 = b2 = 0.0
+        c0 = c1 = c2 = 0.0
+        for i in range(N, 0, -1):
+            t = coef[i, 0] + x2 * b0 - c0
+            c0 = b0
+            b0 = t
+            t = coef[i, 1] + x2 * b1 - c1
+            c1 = b1
+            b1 = t
+            t = coef[i, 2] + x2 * b2 - c2
+            c2 = b2
+            b2 = t
+        S = _scale_of(g[j], l)
+        area += w_area[j] * math.exp(coef[0, 0] + x * b0 - c0 - S)
+        load += w_load[j] * math.exp(coef[0, 1] + x * b1 - c1 - S)
+        stiff += w_load[j] * math.exp(coef[0, 2] + x * b2 - c2 - S)
+    return area, load, stiff, True
+
+
+@numba.njit(cache=True)
+def _elastic_rows(rows, l_values, w_area, w_load, g, y, w, tol, interpolate, jt, out, used):
+    """out[i] = (I_area, I_load, I_stiff) for i in ``rows``; used[i] = 1 if interpolated in g."""
+    n_max = _N_G_MAX
+    cosm = np.empty(2 * n_max)
+    for m in range(2 * n_max):
+        cosm[m] = math.cos(math.pi * m / n_max)
+    g_lo = g.min()
+    g_hi = g.max()
+    g_mid = 0.5 * (g_hi + g_lo)
+    g_half = 0.5 * (g_hi - g_lo)
+    xg = np.empty(g.shape[0])
+    for j in range(g.shape[0]):
+        xg[j] = min(1.0, max(-1.0, (g[j] - g_mid) / g_half)) if g_half > 0.0 else 0.0
+    cuts = np.empty(8)
+    vals = np.empty((n_max + 1, 3))
+    coef = np.empty((n_max + 1, 3))
+    for i in rows:
+        l = l_values[i]
+        ok = False
+        if interpolate and g_half > 1e-12 * g_mid:
+            a, b, k, ok = _elastic_interpolated(l, w_area, w_load, g, xg, g_mid, g_half, y, w, tol, cosm, jt,
+                                                cuts, vals, coef)
+        if not ok:
+            a, b, k = _elastic_direct(l, w_area, w_load, g, y, w, jt, cuts)
+        out[i, 0] = a
+        out[i, 1] = b
+        out[i, 2] = k
+        used[i] = 1 if ok else 0
+
+
+@numba.njit(cache=True, parallel=True)
+def _elastic_rows_parallel(n_blocks, l_values, w_area, w_load, g, y, w, tol, interpolate, jt, out, used):
+    """_elastic_rows over all separations, split into ``n_blocks`` contiguous blocks."""
+    n = l_values.shape[0]
+    for b in numba.prange(n_blocks):
+        rows = np.arange(b * n // n_blocks, (b + 1) * n // n_blocks)
+        _elastic_rows(rows, l_values, w_area, w_load, g, y, w, tol, interpolate, jt, out, used)
+
+
+def _use_threads(n_rows: int) -> bool:
+    return n_rows >= _PARALLEL_MIN and numba.get_num_threads() > 1
+
+
+def polar_elastic_integrals(l_values, w_area, w_load, g, accuracy="table", *, interpolate=True,
+                            return_used=False):
     """The dimensionless (θ, r, t) integrals at each l; columns (area, load, stiffness).
 
     ``w_area``, ``w_load``, ``g`` are per θ-node: θ-weight × cos θ sin θ × f1/c (resp. f2/√c)
-    and g(θ) (see contact.py for how they are built)."""
+    and g(θ) (see contact.py for how they are built). ``interpolate=False`` skips the
+    Chebyshev interpolation in g (the slow path, for tests). ``return_used``: also return
+    a bool array, True where the interpolation converged (else the direct θ-sum was used)."""
     l_values = np.ascontiguousarray(np.atleast_1d(np.asarray(l_values, dtype=float)))
     if not np.all(np.isfinite(l_values)):
         raise ValueError("separations must be finite")
-    _, (y_r, w_r), (y_t, w_t) = settings_for(accuracy).rules()
-    out = np.empty((l_values.shape[0], 3))
-    _polar_elastic_kernel(
+    st = settings_for(accuracy)
+    y, w = gauss_legendre(st.r_nodes)
+    args = (
         l_values,
         np.ascontiguousarray(w_area, dtype=float),
         np.ascontiguousarray(w_load, dtype=float),
         np.ascontiguousarray(g, dtype=float),
-        y_r,
-        w_r,
-        y_t,
-        w_t,
-        out,
+        y,
+        w,
+        float(st.g_tol),
+        bool(interpolate),
+        _moment_table(),
     )
+    out = np.empty((l_values.shape[0], 3))
+    used = np.zeros(l_values.shape[0], dtype=np.int64)
+    if _use_threads(l_values.shape[0]):
+        _elastic_rows_parallel(numba.get_num_threads(), *args, out, used)
+    else:
+        _elastic_rows(np.arange(l_values.shape[0]), *args, out, used)
+    return (out, used.astype(bool)) if return_used else out
+
+
+@numba.njit(cache=True)
+def _elastic_inner_array(g, l, y, w, jt, out):
+    cuts = np.empty(8)
+    for i in range(g.shape[0]):
+        a, b, k, S = _elastic_inner(g[i], l[i], y, w, jt, cuts)
+        f = math.exp(-S)
+        out[i, 0] = a * f
+        out[i, 1] = b * f
+        out[i, 2] = k * f
+
+
+def elastic_inner_integrals(g, l, accuracy="table") -> np.ndarray:
+    """The inner r-integrals (I_area, I_load, I_stiffness) at pairs (g, l), as the kernels
+    compute them (for the tests: a twin with scipy.integrate.quad checks the r-rule)."""
+    g, l = np.broadcast_arrays(np.asarray(g, dtype=float), np.asarray(l, dtype=float))
+    g = np.ascontiguousarray(g.reshape(-1))
+    l = np.ascontiguousarray(l.reshape(-1))
+    if not (np.all(np.isfinite(g)) and np.all(g > 0) and np.all(np.isfinite(l))):
+        raise ValueError("g must be finite and positive, l finite")
+    y, w = gauss_legendre(settings_for(accuracy).r_nodes)
+    out = np.empty((g.shape[0], 3))
+    _elastic_inner_array(g, l, y, w, _moment_table(), out)
     return out
 
 
@@ -338,124 +680,276 @@ def _asperity_law_array(omega, kappa, f1, f2, f3, wc, E_star, ratio, cH, dp, ln_
 
 
 @numba.njit(cache=True)
-def _ep_piece(lo, hi, a, regime, sigma, kappa, wc, f1, f2, f3, E_star, ratio, cH, dp, ln_r, y_t, w_t):
-    """∫_lo^hi (A, W, dW/dω)(σ t) φ(t − a) dt for one regime (0, 1, 2) on [lo, hi].
+def _t_rule_row(lo, hi, a, log_span):
+    """Which t-rule a piece [lo, hi] gets (rows of the (3, n) node arrays: n, n/2, n/4 nodes):
+    by the variation of ln φ(t − a) across it, (hi − lo)·max(1, |a − t_mid|), and the span of
+    ln t if integrated in ln t. Short pieces (high ψ: t_c ≪ 1) are nearly polynomial;
+    tests/test_elastoplastic.py checks every preset against finer settings and the twin."""
+    length = hi - lo
+    c = max(length * max(1.0, abs(a - 0.5 * (lo + hi))), log_span)
+    if c <= 0.1:
+        return 2
+    if c <= 0.75:
+        return 1
+    return 0
 
-    The regime is fixed by the caller's breakpoints, not re-decided per node, so a node
-    that rounds onto t_c or t_p still uses the law of its piece."""
-    width = hi - lo
+
+@numba.njit(cache=True)
+def _t_window(a):
+    """[lo, hi] of t ≥ 0 outside which φ(t − a) is below e^{−TAIL} of its maximum."""
+    if a > 0.0:
+        return max(0.0, a - _SPAN), a + _SPAN
+    # maximum at t = 0: exp(−(t − a)²/2)/exp(−a²/2) = exp(−|a| t − t²/2) = e^{−TAIL}
+    # at t = −|a| + √(a² + 2 TAIL), i.e. a + √(a² + 2 TAIL) since a ≤ 0
+    return 0.0, a + math.sqrt(a * a + 2.0 * TAIL)
+
+
+@numba.njit(cache=True)
+def _t_elastic_piece(lo, hi, a, e, yt, wt, in_sqrt):
+    """e^{e} ∫_lo^hi (t^{1/2}, t, t^{3/2}) φ(t − a) dt (Gauss–Legendre; in u = √t if in_sqrt;
+    the rule of _t_rule_row)."""
+    row = _t_rule_row(lo, hi, a, 0.0)
+    y = yt[row]
+    w = wt[row]
+    m_h = 0.0
+    m_1 = 0.0
+    m_3 = 0.0
+    if in_sqrt:
+        u0 = math.sqrt(lo)
+        du = math.sqrt(hi) - u0
+        for k in range(y.shape[0]):
+            if w[k] == 0.0:
+                break
+            u = u0 + du * y[k]
+            t = u * u
+            d = t - a
+            f = 2.0 * du * w[k] * u * _INV_SQRT_2PI * math.exp(e - 0.5 * d * d)  # dt = 2u du
+            m_h += f * u
+            m_1 += f * t
+            m_3 += f * t * u
+    else:
+        width = hi - lo
+        for k in range(y.shape[0]):
+            if w[k] == 0.0:
+                break
+            t = lo + width * y[k]
+            d = t - a
+            f = width * w[k] * _INV_SQRT_2PI * math.exp(e - 0.5 * d * d)
+            st = math.sqrt(t)
+            m_h += f * st
+            m_1 += f * t
+            m_3 += f * t * st
+    return m_h, m_1, m_3
+
+
+@numba.njit(cache=True)
+def _t_elastic(lo, hi, a, e, y, w):
+    """_t_elastic_piece on [lo, hi], split at the peak t = a if inside; a piece that starts
+    near t = 0 (lo < hi/2) in u = √t (t^{1/2} is not smooth at 0: in t the short rules would
+    converge like ((1 + √(lo/hi))/(1 − √(lo/hi)))^{−2n} only)."""
+    if lo < a < hi:
+        h1, o1, t1 = _t_elastic_piece(lo, a, a, e, y, w, lo < 0.5 * a)
+        h2, o2, t2 = _t_elastic_piece(a, hi, a, e, y, w, a < 0.5 * hi)
+        return h1 + h2, o1 + o2, t1 + t2
+    return _t_elastic_piece(lo, hi, a, e, y, w, lo < 0.5 * hi)
+
+
+@numba.njit(cache=True)
+def _t_ep_piece(lo, hi, a, e, yt, wt, in_log, sigma, kappa, f1, f3, wc, ratio, cH, dp, ln_r):
+    """e^{e} ∫_lo^hi (A, W, dW/dω)(σ t) φ(t − a) dt with the elasto-plastic law (76), (77);
+    Gauss–Legendre in t, or in ln t when ``in_log`` (the law holds ln t: a piece reaching
+    towards t = 0, up to t_p/t_c = 45, would converge only algebraically in t); the rule of
+    _t_rule_row."""
     acc_a = 0.0
     acc_w = 0.0
     acc_s = 0.0
-    for k in range(y_t.shape[0]):
-        t = lo + width * y_t[k]
-        d = t - a
-        wphi = width * w_t[k] * _INV_SQRT_2PI * math.exp(-0.5 * d * d)
-        omega = sigma * t
-        if regime == 0:
-            A, W, S = _asperity_elastic(omega, kappa, f1, f2, E_star)
-        elif regime == 1:
-            A, W, S = _asperity_elastoplastic(omega, kappa, f1, f3, wc, ratio, cH, dp, ln_r)
+    span = math.log(hi / lo) if in_log else hi - lo
+    row = _t_rule_row(lo, hi, a, span if in_log else 0.0)
+    y = yt[row]
+    w = wt[row]
+    for k in range(y.shape[0]):
+        if w[k] == 0.0:
+            break
+        if in_log:
+            t = lo * math.exp(span * y[k])
+            jac = span * t
         else:
-            A, W, S = _asperity_plastic(omega, kappa, f3, cH)
-        acc_a += wphi * A
-        acc_w += wphi * W
-        acc_s += wphi * S
+            t = lo + span * y[k]
+            jac = span
+        d = t - a
+        f = jac * w[k] * _INV_SQRT_2PI * math.exp(e - 0.5 * d * d)
+        A, W, S = _asperity_elastoplastic(sigma * t, kappa, f1, f3, wc, ratio, cH, dp, ln_r)
+        acc_a += f * A
+        acc_w += f * W
+        acc_s += f * S
     return acc_a, acc_w, acc_s
 
 
 @numba.njit(cache=True)
-def _ep_piece_split(lo, hi, a, regime, sigma, kappa, wc, f1, f2, f3, E_star, ratio, cH, dp, ln_r, y_t, w_t):
-    """_ep_piece, split at the Gaussian peak t = a when it lies inside (lo, hi)."""
-    if lo < a and a < hi:
-        a1, w1, s1 = _ep_piece(lo, a, a, regime, sigma, kappa, wc, f1, f2, f3, E_star, ratio, cH, dp, ln_r, y_t, w_t)
-        a2, w2, s2 = _ep_piece(a, hi, a, regime, sigma, kappa, wc, f1, f2, f3, E_star, ratio, cH, dp, ln_r, y_t, w_t)
+def _t_ep(lo, hi, a, e, y, w, sigma, kappa, f1, f3, wc, ratio, cH, dp, ln_r):
+    """_t_ep_piece on [lo, hi] (lo ≥ t_c > 0), split at the peak t = a if inside; in ln t
+    where a piece starts near 0 relative to its length (lo < hi/2)."""
+    if lo < a < hi:
+        a1, w1, s1 = _t_ep_piece(lo, a, a, e, y, w, lo < 0.5 * a, sigma, kappa, f1, f3, wc, ratio, cH, dp, ln_r)
+        a2, w2, s2 = _t_ep_piece(a, hi, a, e, y, w, a < 0.5 * hi, sigma, kappa, f1, f3, wc, ratio, cH, dp, ln_r)
         return a1 + a2, w1 + w2, s1 + s2
-    return _ep_piece(lo, hi, a, regime, sigma, kappa, wc, f1, f2, f3, E_star, ratio, cH, dp, ln_r, y_t, w_t)
+    return _t_ep_piece(lo, hi, a, e, y, w, lo < 0.5 * hi, sigma, kappa, f1, f3, wc, ratio, cH, dp, ln_r)
 
 
 @numba.njit(cache=True)
-def _ep_t_integral(a, sigma, kappa, wc, f1, f2, f3, E_star, ratio, cH, dp, ln_r, y_t, w_t, acc, weight):
-    """Add weight × ∫₀^∞ law(σ t) φ(t − a) dt to acc[0:7] = (A^e, A^ep, A^p, W^e, W^ep, W^p, S).
+def _ep_r_piece(lo, hi, in_sqrt, l, g, c, f1, f2, f3, tc1, S, sigma, E_star, ratio, cH, dp, ln_r, pv,
+                with_jump, y_r, w_r, y_t, w_t, jt, acc):
+    """acc[0:8] += e^{S} ∫_lo^hi r³ e^{−r²/2} (t-integrals) dr, columns (A^e, A^ep, A^p, W^e,
+    W^ep, W^p, dW/dω, load-jump term).
 
-    The t-axis is cut at t_c = ω_c/σ and t_p = (ω_p/ω_c) t_c; each regime piece is
-    intersected with the Gaussian window of φ(t − a) (empty pieces skipped) and split at
-    its peak."""
-    if a < _A_UNDERFLOW:
-        return
-    lo, hi = _t_window(a)
-    tc = wc / sigma
-    tp = ratio * tc
-    e_hi = min(hi, tc)
-    if lo < e_hi:
-        A, W, S = _ep_piece_split(lo, e_hi, a, 0, sigma, kappa, wc, f1, f2, f3, E_star, ratio, cH, dp, ln_r, y_t, w_t)
-        acc[0] += weight * A
-        acc[3] += weight * W
-        acc[6] += weight * S
-    ep_lo = max(lo, tc)
-    ep_hi = min(hi, tp)
-    if ep_lo < ep_hi:
-        A, W, S = _ep_piece_split(ep_lo, ep_hi, a, 1, sigma, kappa, wc, f1, f2, f3, E_star, ratio, cH, dp, ln_r, y_t, w_t)
-        acc[1] += weight * A
-        acc[4] += weight * W
-        acc[6] += weight * S
-    p_lo = max(lo, tp)
-    if p_lo < hi:
-        A, W, S = _ep_piece_split(p_lo, hi, a, 2, sigma, kappa, wc, f1, f2, f3, E_star, ratio, cH, dp, ln_r, y_t, w_t)
-        acc[2] += weight * A
-        acc[5] += weight * W
-        acc[6] += weight * S
-
-
-@numba.njit(cache=True)
-def _ep_r_sums(lo, hi, l, g, c, f1, f2, f3, tc1, sigma, E_star, ratio, cH, dp, ln_r, pv, with_jump,
-               y_r, w_r, y_t, w_t, acc):
-    """acc[0:8] += ∫_lo^hi r³ e^{−r²/2} (t-integrals of _ep_t_integral, jump term) dr.
-
-    acc[7] is the Leibniz term of a load jump J at ω_c (zero for the continuous K_v):
-    (1/σ) J φ(t_c + l − r g), J = A^e(ω_c)·(2/3) K_v H − W^e(ω_c) (pv = (2/3) K_v H)."""
-    width = hi - lo
+    Per r: a = r g − l, κ_m = r c (44), ω_c = σ tc1/r (65), t_c = tc1/r, t_p = (ω_p/ω_c) t_c.
+    A summit whose Gaussian t-window lies below t_c is elastic: σ-powers of (46), (47), (54)
+    times J_1, J_{3/2}, J_{1/2}(a) in closed form; above t_p plastic: (61), (67) with
+    ∫_{t_p}^∞ (1, t) φ(t − a) dt = (J_0(a − t_p), t_p J_0(a − t_p) + J_1(a − t_p)), also
+    closed. Only the elastic piece [lo, t_c] and the elasto-plastic piece [t_c, t_p] of a
+    straddling window are integrated numerically. The jump term: (1/σ) J φ(t_c − a) with
+    J = A^e(ω_c)·(2/3) K_v H − W^e(ω_c) (pv = (2/3) K_v H)."""
+    s15 = sigma * math.sqrt(sigma)
+    ss = math.sqrt(sigma)
     for k in range(y_r.shape[0]):
-        r = lo + width * y_r[k]
-        wr = width * w_r[k] * r * r * r * math.exp(-0.5 * r * r)
+        if in_sqrt:
+            u0 = math.sqrt(lo)
+            du = math.sqrt(hi) - u0
+            u = u0 + du * y_r[k]
+            r = u * u
+            wr = 2.0 * du * w_r[k] * u * r * r * r
+        else:
+            r = lo + (hi - lo) * y_r[k]
+            wr = (hi - lo) * w_r[k] * r * r * r
         if wr == 0.0:
             continue
+        e = S - 0.5 * r * r
         a = r * g - l
         kappa = r * c  # κ_m = r c(θ), eq. (44)
-        wc = sigma * tc1 / r  # ω_c = ω_c(θ, κ_m = c)/r, eq. (65)
-        _ep_t_integral(a, sigma, kappa, wc, f1, f2, f3, E_star, ratio, cH, dp, ln_r, y_t, w_t, acc, wr)
+        tc = tc1 / r
+        wc = sigma * tc  # ω_c = ω_c(θ, κ_m = c)/r, eq. (65)
+        tp = ratio * tc
+        t_lo, t_hi = _t_window(a)
+        rk = math.sqrt(kappa)
+        ce_a = f1 * math.pi * sigma / kappa  # (46) per unit t
+        ce_w = f2 * (4.0 / 3.0) * E_star * s15 / rk  # (47) per unit t^{3/2}
+        ce_s = 2.0 * f2 * E_star * ss / rk  # (54) per unit t^{1/2}
+        cp_a = 2.0 * f3 * math.pi * sigma / kappa  # (61) per unit t
+        cp_s = 2.0 * f3 * math.pi * cH / kappa  # d(67)/dω
+        if tc >= t_hi:
+            _, jh, j1, j3 = _moments(a, e, jt)
+            acc[0] += wr * ce_a * j1
+            acc[3] += wr * ce_w * j3
+            acc[6] += wr * ce_s * jh
+        elif tp <= t_lo:
+            j0, _, j1, _ = _moments(a, e, jt)
+            acc[2] += wr * cp_a * j1
+            acc[5] += wr * cp_a * cH * j1
+            acc[6] += wr * cp_s * j0
+        else:
+            if tc > t_lo:
+                mh, m1, m3 = _t_elastic(t_lo, tc, a, e, y_t, w_t)
+                acc[0] += wr * ce_a * m1
+                acc[3] += wr * ce_w * m3
+                acc[6] += wr * ce_s * mh
+            ep_lo = max(t_lo, tc)
+            ep_hi = min(t_hi, tp)
+            if ep_lo < ep_hi:
+                A, W, Sd = _t_ep(ep_lo, ep_hi, a, e, y_t, w_t, sigma, kappa, f1, f3, wc, ratio, cH, dp, ln_r)
+                acc[1] += wr * A
+                acc[4] += wr * W
+                acc[6] += wr * Sd
+            if tp < t_hi:
+                j0, _, j1, _ = _moments(a - tp, e, jt)
+                p1 = tp * j0 + j1
+                acc[2] += wr * cp_a * p1
+                acc[5] += wr * cp_a * cH * p1
+                acc[6] += wr * cp_s * j0
         if with_jump:
-            d = wc / sigma - a
+            d = tc - a
             Ae, We, _ = _asperity_elastic(wc, kappa, f1, f2, E_star)
-            acc[7] += wr * (Ae * pv - We) * _INV_SQRT_2PI * math.exp(-0.5 * d * d) / sigma
+            acc[7] += wr * (Ae * pv - We) * _INV_SQRT_2PI * math.exp(e - 0.5 * d * d) / sigma
+
+
+@numba.njit(cache=True)
+def _regime_crossing(g, l, tau):
+    """The r > 0 where a regime boundary t = τ/r (τ = t_c1 or (ω_p/ω_c) t_c1) meets the bulk
+    of the t-mass, the mode t_m(a) = (a + √(a² + 4))/2 of t φ(t − a), a = r g − l: the
+    regime parts change fastest there. τ/r falls and t_m(r g − l) rises with r: bisection
+    in ln r."""
+    lo = -60.0
+    hi = math.log(max(1.0, abs(l) / g) + 2.0 * math.sqrt(tau) + 2.0 * tau + 10.0)
+    for _ in range(80):
+        mid = 0.5 * (lo + hi)
+        r = math.exp(mid)
+        a = r * g - l
+        if tau / r > 0.5 * (a + math.sqrt(a * a + 4.0)):
+            lo = mid
+        else:
+            hi = mid
+        if hi - lo < 1e-6:
+            break
+    return math.exp(0.5 * (lo + hi))
+
+
+@numba.njit(cache=True)
+def _ep_theta_node(l, g, c, f1, f2, f3, tc1, sigma, E_star, ratio, cH, dp, ln_r, pv, with_jump,
+                   y_r, w_r, y_t, w_t, jt, cuts, acc):
+    """acc[0:8] = the (r, t)-integrals at one θ-node (unscaled). The r-partition is the
+    elastic one (_r_cuts) plus the r where t_c and t_p cross the bulk of the t-mass
+    (_regime_crossing)."""
+    n, S, sqrt0 = _r_cuts(g, l, cuts)
+    r_c = _regime_crossing(g, l, tc1)
+    r_p = _regime_crossing(g, l, ratio * tc1)
+    for extra in (0.5 * r_c, r_c, 2.0 * r_c, r_p):
+        if cuts[0] < extra < cuts[n - 1]:
+            p = n
+            while cuts[p - 1] > extra:
+                cuts[p] = cuts[p - 1]
+                p -= 1
+            cuts[p] = extra
+            n += 1
+    for q in range(8):
+        acc[q] = 0.0
+    for p in range(n - 1):
+        lo = cuts[p]
+        hi = cuts[p + 1]
+        if hi > lo:
+            in_sqrt = lo < 0.1 * hi and (lo > 0.0 or sqrt0)
+            _ep_r_piece(lo, hi, in_sqrt, l, g, c, f1, f2, f3, tc1, S, sigma, E_star, ratio, cH, dp, ln_r, pv,
+                        with_jump, y_r, w_r, y_t, w_t, jt, acc)
+    f = math.exp(-S)
+    for q in range(8):
+        acc[q] *= f
+
+
+@numba.njit(cache=True)
+def _ep_pairs(pairs, l_values, g, c, f1, f2, f3, tc1, sigma, E_star, ratio, cH, dp, pv, with_jump,
+              y_r, w_r, y_t, w_t, jt, out):
+    """out[i, j, :] for the (l, θ-node) pairs ij = i·n_θ + j in ``pairs``."""
+    n_theta = g.shape[0]
+    ln_r = math.log(ratio)
+    cuts = np.empty(12)
+    acc = np.empty(8)
+    for ij in pairs:
+        i = ij // n_theta
+        j = ij - i * n_theta
+        _ep_theta_node(l_values[i], g[j], c[j], f1[j], f2[j], f3[j], tc1[j], sigma, E_star, ratio, cH, dp, ln_r,
+                       pv, with_jump, y_r, w_r, y_t, w_t, jt, cuts, acc)
+        for q in range(8):
+            out[i, j, q] = acc[q]
 
 
 @numba.njit(cache=True, parallel=True)
-def _polar_elastoplastic_kernel(l_values, g, c, f1, f2, f3, tc1, sigma, E_star, ratio, cH, dp, pv,
-                                with_jump, y_r, w_r, y_t, w_t, out):
-    """out[i, j, :] = the (r, t)-integrals at l_values[i] and θ-node j (not yet θ-weighted):
-
-    ∫ dr r³ e^{−r²/2} ∫ dt φ(t + l − r g_j) × (A^e, A^ep, A^p, W^e, W^ep, W^p, dW/dω, ·)
-    with the per-asperity laws at ω = σ t, κ_m = r c_j, ω_c = σ tc1_j/r; the 8th column is
-    the load-jump term (see _ep_r_sums). Parallel over (l, θ-node) pairs."""
-    n_theta = g.shape[0]
-    ln_r = math.log(ratio)
-    for ij in numba.prange(l_values.shape[0] * n_theta):
-        i = ij // n_theta
-        j = ij - i * n_theta
-        l = l_values[i]
-        acc = np.zeros(8)
-        lo, peak, hi = _r_window(g[j], l)
-        if peak > lo:
-            _ep_r_sums(lo, peak, l, g[j], c[j], f1[j], f2[j], f3[j], tc1[j], sigma, E_star, ratio, cH, dp,
-                       ln_r, pv, with_jump, y_r, w_r, y_t, w_t, acc)
-            _ep_r_sums(peak, hi, l, g[j], c[j], f1[j], f2[j], f3[j], tc1[j], sigma, E_star, ratio, cH, dp,
-                       ln_r, pv, with_jump, y_r, w_r, y_t, w_t, acc)
-        else:
-            _ep_r_sums(lo, hi, l, g[j], c[j], f1[j], f2[j], f3[j], tc1[j], sigma, E_star, ratio, cH, dp,
-                       ln_r, pv, with_jump, y_r, w_r, y_t, w_t, acc)
-        for q in range(8):
-            out[i, j, q] = acc[q]
+def _ep_pairs_parallel(n_blocks, l_values, g, c, f1, f2, f3, tc1, sigma, E_star, ratio, cH, dp, pv, with_jump,
+                       y_r, w_r, y_t, w_t, jt, out):
+    """_ep_pairs over all (l, θ-node) pairs, interleaved over ``n_blocks`` blocks (the cost
+    of a pair varies along θ)."""
+    n = l_values.shape[0] * g.shape[0]
+    for b in numba.prange(n_blocks):
+        pairs = np.arange(b, n, n_blocks)
+        _ep_pairs(pairs, l_values, g, c, f1, f2, f3, tc1, sigma, E_star, ratio, cH, dp, pv, with_jump,
+                  y_r, w_r, y_t, w_t, jt, out)
 
 
 def asperity_law(omega, kappa, f1, f2, f3, wc, E_star, ratio, cH, dp) -> np.ndarray:
@@ -468,6 +962,17 @@ def asperity_law(omega, kappa, f1, f2, f3, wc, E_star, ratio, cH, dp) -> np.ndar
     return out
 
 
+@functools.lru_cache(maxsize=8)
+def _t_rules(n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Gauss–Legendre rules with n, n/2, n/4 nodes (≥ 4) as rows, zero-padded (a zero weight
+    ends a row)."""
+    y = np.zeros((3, n))
+    w = np.zeros((3, n))
+    for row, m in enumerate((n, max(4, n // 2), max(4, n // 4))):
+        y[row, :m], w[row, :m] = gauss_legendre(m)
+    return y, w
+
+
 def polar_elastoplastic_integrals(l_values, nodes, sigma, material_constants, accuracy="table") -> np.ndarray:
     """Per (l, θ-node) (r, t)-integrals of the elasto-plastic laws; shape (n_l, n_θ, 8).
 
@@ -478,26 +983,28 @@ def polar_elastoplastic_integrals(l_values, nodes, sigma, material_constants, ac
     l_values = np.ascontiguousarray(np.atleast_1d(np.asarray(l_values, dtype=float)))
     if not np.all(np.isfinite(l_values)):
         raise ValueError("separations must be finite")
-    _, (y_r, w_r), (y_t, w_t) = elastoplastic_settings_for(accuracy).rules()
+    st = elastoplastic_settings_for(accuracy)
+    y_r, w_r = gauss_legendre(st.r_nodes)
+    y_t, w_t = _t_rules(st.t_nodes)
     arr = {k: np.ascontiguousarray(nodes[k], dtype=float) for k in ("g", "c", "f1", "f2", "f3", "tc1")}
     E_star, ratio, cH, dp, pv, with_jump = material_constants
     out = np.empty((l_values.shape[0], arr["g"].shape[0], 8))
-    _polar_elastoplastic_kernel(
-        l_values, arr["g"], arr["c"], arr["f1"], arr["f2"], arr["f3"], arr["tc1"], float(sigma),
-        float(E_star), float(ratio), float(cH), float(dp), float(pv), bool(with_jump),
-        y_r, w_r, y_t, w_t, out,
-    )
+    args = (l_values, arr["g"], arr["c"], arr["f1"], arr["f2"], arr["f3"], arr["tc1"], float(sigma),
+            float(E_star), float(ratio), float(cH), float(dp), float(pv), bool(with_jump),
+            y_r, w_r, y_t, w_t, _moment_table(), out)
+    if numba.get_num_threads() > 1:
+        _ep_pairs_parallel(numba.get_num_threads(), *args)
+    else:
+        _ep_pairs(np.arange(out.shape[0] * out.shape[1]), *args)
     return out
 
 
-#: Presets of the elasto-plastic kernel. The regime parts (A^e, A^ep, A^p, ...) need a finer
-#: r-rule than the elastic totals: where t_c = tc1/r sweeps the Gaussian window the part
-#: integrands have a knee at small r (r ~ tc1 at high ψ). Measured against levels (6, 6, 6)
-#: and the scipy twin (tests/test_elastoplastic.py): "table" ≤ 1e-12 relative on totals and
-#: parts above 1e-3 of their total; "plot" ≤ 1e-8.
+#: Presets of the elasto-plastic kernel. Measured against the scipy twin and against finer
+#: settings (tests/test_elastoplastic.py, docs/performance.md): "table" ≤ 1e-11 relative on
+#: totals and on parts above 1e-3 of their total; "plot" ≤ 1e-8.
 ELASTOPLASTIC_PRESETS: dict[str, QuadratureSettings] = {
-    "table": QuadratureSettings(theta_level=4, r_level=5, t_level=4),
-    "plot": QuadratureSettings(theta_level=3, r_level=4, t_level=3),
+    "table": QuadratureSettings(theta_level=3, r_level=5, t_level=5),
+    "plot": QuadratureSettings(theta_level=3, r_level=3, t_level=4),
 }
 
 
