@@ -8,21 +8,22 @@ def errata_input(wildcards):
 
 
 rule numerics_elastoplastic:
-    """Elasto-plastic production vs the slow twin at a numerics scene's check points (slow:
-    the twin is a nested adaptive cubature)."""
+    """Elasto-plastic production vs the slow twin at one check point of a numerics scene (slow:
+    the twin is a nested adaptive cubature; one job per point so they run in parallel)."""
     input:
         lib=PHYSICS_SOURCES,
     output:
-        "results/numerics/{scene}.nc",
+        "results/numerics/{scene}/point-{point}.nc",
     log:
-        "logs/numerics/{scene}.log",
+        "logs/numerics/{scene}/point-{point}.log",
     benchmark:
-        "results/benchmarks/numerics/{scene}.tsv"
+        "results/benchmarks/numerics/{scene}/point-{point}.tsv"
     wildcard_constraints:
         scene=_alternation(NUMERICS_SCENES),
+        point=r"\d+",
     params:
         scene=lambda w: w.scene,
-        scene_config=lambda w: compute_config(w.scene),
+        scene_config=lambda w: {**compute_config(w.scene), "points": [SCENES[w.scene]["points"][int(w.point)]]},
         surfaces=lambda w: {p["surface"]: surface_of(p["surface"]) for p in SCENES[w.scene]["points"]},
     threads: 1
     script:
@@ -32,7 +33,7 @@ rule numerics_elastoplastic:
 rule numerics_report:
     """The numerics rows of a numerics scene (results/verify/<scene>.checks.csv) and its CSV."""
     input:
-        data="results/numerics/{scene}.nc",
+        data=lambda w: [f"results/numerics/{w.scene}/point-{i}.nc" for i in range(len(SCENES[w.scene]["points"]))],
         code=REPORT_SOURCES,
     output:
         csv="paper_figures/{scene}.csv",

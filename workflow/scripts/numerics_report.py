@@ -4,8 +4,10 @@ from roughcontact import claims, io, verify
 
 
 def run(scene, cfg, data, out, log):
+    import xarray as xr
+
     with io.log_to(log) as logger:
-        ds = io.read_netcdf(data)
+        ds = xr.concat([io.read_netcdf(path) for path in data], dim="point", combine_attrs="override")
         checks = claims.elastoplastic_numerics_checks(scene, ds, float(cfg["rtol"]), " ".join(cfg["why"].split()))
         for c in checks:
             logger.info("%s: %s %s", c.id, c.verdict, c.detail)
@@ -16,5 +18,5 @@ def run(scene, cfg, data, out, log):
 
 if "snakemake" in globals():
     sm = snakemake  # noqa: F821
-    run(sm.params.scene, sm.params.scene_config, sm.input.data, {"csv": sm.output.csv, "checks": sm.output.checks},
+    run(sm.params.scene, sm.params.scene_config, list(sm.input.data), {"csv": sm.output.csv, "checks": sm.output.checks},
         sm.log[0])
