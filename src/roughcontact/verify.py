@@ -713,11 +713,16 @@ def render_verification_markdown(
                         f"| {c.tolerance:.0e} | {c.verdict} | {_STATUS_MARK.get(c.status, c.status)} |"
                     )
             else:
-                lines += ["| check | claim | result | verdict | status | reason |", "|---|---|---|---|---|---|"]
+                lines += [
+                    "| check | claim | result | verdict | status | criterion | why (documented) |",
+                    "|---|---|---|---|---|---|---|",
+                ]
                 for c in cs:
+                    why = c.reason if c.verdict != REPRODUCED or c.status != STATUS_OK else ""
                     lines.append(
                         f"| `{c.id.split(':', 1)[1]}` | {_md_escape(c.description)} | {_md_escape(c.detail)} "
-                        f"| {c.verdict} | {_STATUS_MARK.get(c.status, c.status)} | {_md_escape(c.tolerance_why or c.reason)} |"
+                        f"| {c.verdict} | {_STATUS_MARK.get(c.status, c.status)} | {_md_escape(c.tolerance_why)} "
+                        f"| {_md_escape(why)} |"
                     )
             lines.append("")
 
