@@ -218,6 +218,17 @@ def fig6(load: Mapping[str, Sequence[float]], mean_pressure: Mapping[str, Sequen
 _MARKERS_78 = ("^", "x", "s", "o", "v")
 
 
+def _stiffness_axes(ax, title, xlim, ylabel):
+    """Log–log K/A0 against W/A0 axes (Figs 7–8 and the sensitivity scene)."""
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    if xlim is not None:
+        ax.set_xlim(*xlim)
+    ax.set_xlabel(r"average pressure $W/A_0$")
+    ax.set_ylabel(ylabel)
+    ax.set_title(title, fontsize=9)
+
+
 def stiffness_vs_pressure(panels: Mapping[str, Mapping[str, tuple]], *, xlim=None):
     """Figs 7–8: K/A0 against W/A0 (log–log). ``panels`` maps a panel title to {curve label:
     (pressure_elastic, stiffness_elastic, pressure_ep, stiffness_ep)}: elastic solid,
@@ -233,13 +244,7 @@ def stiffness_vs_pressure(panels: Mapping[str, Mapping[str, tuple]], *, xlim=Non
                           markerfacecolor="none")
                 ax.plot(*_within(pe, ke, xlim), linestyle="-", label=f"{label}, elastic", **kw)
                 ax.plot(*_within(pp, kp, xlim), linestyle="--", label=f"{label}, elasto-plastic", **kw)
-            ax.set_xscale("log")
-            ax.set_yscale("log")
-            if xlim is not None:
-                ax.set_xlim(*xlim)
-            ax.set_xlabel(r"average pressure $W/A_0$")
-            ax.set_ylabel(r"normal stiffness $K/A_0$")
-            ax.set_title(title, fontsize=9)
+            _stiffness_axes(ax, title, xlim, r"normal stiffness $K/A_0$")
             if k == 0:
                 ax.legend(loc="upper left", fontsize=7)
         fig.tight_layout()
@@ -258,13 +263,7 @@ def stiffness_sensitivity(variants: Mapping[str, tuple], by_psi: Mapping[str, tu
             for i, (label, (p, s)) in enumerate(curves.items()):
                 ax.plot(*_within(p, s, xlim), color=colors[i], linestyle=("-", "--")[k == 0 and i >= len(_COLORS)],
                         label=label)
-            ax.set_xscale("log")
-            ax.set_yscale("log")
-            if xlim is not None:
-                ax.set_xlim(*xlim)
-            ax.set_xlabel(r"average pressure $W/A_0$")
-            ax.set_ylabel(r"normal stiffness $K/A_0$ (elasto-plastic)")
-            ax.set_title(title, fontsize=9)
+            _stiffness_axes(ax, title, xlim, r"normal stiffness $K/A_0$ (elasto-plastic)")
             ax.legend(loc="upper left", fontsize=7)
         fig.tight_layout()
     return fig

@@ -37,18 +37,6 @@ _MATERIAL = ("psi", "Y", "E_star", "c_h", "wp_over_wc", "yield_coefficient")
 #: Parameters a sweep axis (or a fixed value) may name.
 SWEEPABLE = _MOMENTS + _MATERIAL
 
-_EP_FIELDS = (
-    "area_fraction",
-    "pressure",
-    "stiffness",
-    "elastic_area_fraction",
-    "elastoplastic_area_fraction",
-    "plastic_area_fraction",
-    "elastic_pressure",
-    "elastoplastic_pressure",
-    "plastic_pressure",
-    "stiffness_jump",
-)
 _ELASTIC_FIELDS = ("area_fraction", "pressure", "stiffness")
 
 
@@ -167,18 +155,19 @@ def run_sweep(spec: SweepSpec, progress: Callable[[int, int], None] | None = Non
     import xarray as xr
 
     from .contact import elastic_contact
-    from .elastoplastic import elastoplastic_contact
+    from .elastoplastic import ElastoPlasticCurves, elastoplastic_contact
 
+    ep_fields = ElastoPlasticCurves.FIELDS
     jobs = _validate(spec)
     shape = spec.shape
-    data = {f: np.empty(shape) for f in _EP_FIELDS}
+    data = {f: np.empty(shape) for f in ep_fields}
     if spec.with_elastic:
         data.update({f"elastic_model_{f}": np.empty(shape) for f in _ELASTIC_FIELDS})
     per_combo = {k: np.empty(shape[:-1]) for k in ("psi", "Y", "H")}
     elastic_done = {}  # the elastic model depends on (surface, E*) only, not on the material
     for n, (idx, surface, material) in enumerate(jobs, start=1):
         ep = elastoplastic_contact(surface, spec.s, material, hertz=spec.hertz, accuracy=spec.accuracy)
-        for f in _EP_FIELDS:
+        for f in ep_fields:
             data[f][idx] = getattr(ep, f)
         if spec.with_elastic:
             key = (surface, material.E_star)
