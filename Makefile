@@ -4,8 +4,8 @@
 #   make test        create .venv (if missing), install, run the test suite (fast tier, < 3 min)
 #
 # Other targets: test-slow (the slow tier: mpmath references, workflow runs; CI runs it), test-all,
-# verify (verification report and verdict gate only), dry-run, ci (.ci/run), clean (generated
-# results), distclean (+ .venv).
+# bench (speed against error, full mode), verify (verification report and verdict gate only),
+# dry-run, ci (.ci/run), clean (generated results), distclean (+ .venv).
 
 SHELL := /bin/bash
 .DEFAULT_GOAL := help
@@ -21,7 +21,7 @@ SNAKEMAKE := $(BIN)/snakemake --workflow-profile workflow/profiles/default --cor
 # need no re-install).
 STAMP  := $(VENV)/.installed
 
-.PHONY: help venv reproduce test test-slow test-all verify dry-run ci clean distclean
+.PHONY: help venv reproduce bench test test-slow test-all verify dry-run ci clean distclean
 
 help:
 	@sed -n '3,8p' Makefile
@@ -37,8 +37,15 @@ $(STAMP): pyproject.toml | $(PY)
 
 venv: $(STAMP)
 
+# the wall time of the whole workflow is recorded in paper_figures/reproduction_time.md
 reproduce: $(STAMP)
-	$(SNAKEMAKE) all
+	@fresh=$$(test -d results && echo no || echo yes); start=$$(date +%s); \
+	$(SNAKEMAKE) all && \
+	$(PY) workflow/scripts/record_wall_time.py --seconds $$(( $$(date +%s) - start )) --cores $(CORES) --fresh $$fresh
+
+# speed against error, full mode (~1-2 h on 2 cores the first time; references are cached)
+bench: $(STAMP)
+	$(SNAKEMAKE) speed_vs_error --config benchmark_mode=full
 
 # pyproject.toml deselects the mpmath- and slow-marked tests by default ("fast by default")
 test: $(STAMP)

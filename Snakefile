@@ -3,7 +3,7 @@
 #
 #   snakemake -n all                        plan everything (works on a fresh clone)
 #   snakemake --cores 2 all                 tables, figures, sweeps, VERIFICATION.md, verdict gate
-#   snakemake --cores 2 table1 | table2 | fig3 ... fig8 | stiffness_sensitivity | sweeps | verify
+#   snakemake --cores 2 table1 | ... | fig18_point | sweeps | speed_vs_error | verify
 #
 # `make reproduce` / `make verify` add the default profile (workflow/profiles/default:
 # rerun-incomplete, so a killed run resumes); CI uses workflow/profiles/ci (lower reference
@@ -38,4 +38,5 @@ include: "workflow/rules/contact.smk"
 include: "workflow/rules/tables.smk"
 include: "workflow/rules/figures.smk"
 include: "workflow/rules/sweeps.smk"
+include: "workflow/rules/benchmarks.smk"
 include: "workflow/rules/verify.smk"

@@ -637,8 +637,10 @@ def render_verification_markdown(
     errata_link: str = "../docs/errata.md",
     provenance: Mapping[str, Any] | None = None,
     scene_titles: Mapping[str, str] | None = None,
+    sections: Mapping[str, str] | None = None,
 ) -> str:
-    """paper_figures/VERIFICATION.md: summary, regressions, one row per check, errata."""
+    """paper_figures/VERIFICATION.md: summary, regressions, one row per check, the extra
+    ``sections`` (title → markdown, e.g. speed against error), errata."""
     summary = summarize(checks)
     scene_titles = scene_titles or {}
     lines = ["# Verification against Buczkowski & Kleiber (2009)", ""]
@@ -725,6 +727,9 @@ def render_verification_markdown(
                         f"| {_md_escape(why)} |"
                     )
             lines.append("")
+
+    for title, body in (sections or {}).items():
+        lines += [f"## {title}", "", body.rstrip(), ""]
 
     lines += ["## Errata", ""]
     if errata:

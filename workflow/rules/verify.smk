@@ -51,9 +51,11 @@ rule numerics_report:
 
 
 rule verification_report:
-    """paper_figures/VERIFICATION.md (+ CSV and a JSON summary) from every scene's checks."""
+    """paper_figures/VERIFICATION.md (+ CSV and a JSON summary) from every scene's checks and
+    the speed-against-error report."""
     input:
         checks=scene_checks(),
+        speed="paper_figures/speed_vs_error.md",
         expected="config/expected_verdicts.yaml",
         errata=errata_input,
         code=REPORT_SOURCES,

@@ -8,7 +8,18 @@ import yaml
 from roughcontact import __version__, io, verify
 
 
-def run(checks_files, expected, errata, scene_titles, reference_dps, out, log):
+def _speed_section(path):
+    """The benchmark report fragment, its headings pushed one level down, and where the
+    workflow's own wall time is recorded."""
+    body = "\n".join(("#" + line) if line.startswith("#") else line for line in Path(path).read_text().splitlines())
+    return (
+        "Measured by `snakemake speed_vs_error` (benchmarks/speed_vs_error.py; `make bench` for the "
+        "full mode). The wall time of the whole reproduction is written by `make reproduce` after "
+        "the workflow ends, to [reproduction_time.md](reproduction_time.md).\n\n" + body.strip() + "\n"
+    )
+
+
+def run(checks_files, speed, expected, errata, scene_titles, reference_dps, out, log):
     with io.log_to(log) as logger:
         checks = []
         for path in checks_files:
@@ -24,13 +35,14 @@ def run(checks_files, expected, errata, scene_titles, reference_dps, out, log):
         summary["provenance"] = provenance
         logger.info("summary: %s", json.dumps({k: v for k, v in summary.items() if k != "by_kind"}))
         io.write_text(out["md"], verify.render_verification_markdown(
-            checks, errata=errata_list, provenance=provenance, scene_titles=scene_titles))
+            checks, errata=errata_list, provenance=provenance, scene_titles=scene_titles,
+            sections={"Speed against error": _speed_section(speed)}))
         io.write_text(out["csv"], verify.checks_to_csv(checks))
         io.write_text(out["summary"], json.dumps(summary, indent=2, sort_keys=True) + "\n")
 
 
 if "snakemake" in globals():
     sm = snakemake  # noqa: F821
-    run(list(sm.input.checks), sm.input.expected, list(sm.input.errata), sm.params.scene_titles,
+    run(list(sm.input.checks), sm.input.speed, sm.input.expected, list(sm.input.errata), sm.params.scene_titles,
         sm.params.reference_dps, {"md": sm.output.md, "csv": sm.output.csv, "summary": sm.output.summary},
         sm.log[0])
