@@ -13,7 +13,14 @@ from __future__ import annotations
 from typing import Mapping, Sequence
 
 import numpy as np
+import xarray as xr
 
+from . import friction
+from .asperity import effective_modulus, paper_K_v
+from .closures import resolve_material
+from .elastoplastic import elastoplastic_contact, reference_integrals
+from .interface import InterfaceLaw, NormalLawTable
+from .surface import SpectralMoments
 from .sweep import SweepSpec, parameter_units, run_sweep
 
 __all__ = [
@@ -38,8 +45,6 @@ def stiffness_curves(moments: Mapping[str, float], m00: Sequence[float], E_star:
     """Figs 7–8: elasto-plastic and purely elastic K/A0 and W/A0 for several m00 (the other
     moments fixed), one per closure (dims closure, m00, s). The captions give both ψ and Y:
     "material" uses Y (ψ follows), "yield-from-psi" uses ψ, "paper-literal" both."""
-    import xarray as xr
-
     fixed = {k: v for k, v in moments.items() if k != "m00"}
     inputs = {"material": {"Y": Y}, "yield-from-psi": {"psi": psi}, "paper-literal": {"psi": psi, "Y": Y}}
     parts = []
@@ -60,8 +65,6 @@ def stiffness_sensitivity(moments: Mapping[str, float], E_star: float, psi: floa
     moment → factor, e.g. {"m20": 2, "m02": 2}; the base is added as "base") at plasticity
     index ``psi`` (dims variant, s), and the elasto-plastic model of the base surface for
     ``psi_values`` (variables psi_pressure, psi_stiffness over psi, s)."""
-    import xarray as xr
-
     rows = {"base": dict(moments)}
     for name, factors in variants.items():
         unknown = set(factors) - set(_MOMENTS)
@@ -96,13 +99,6 @@ def elastoplastic_numerics(points: Sequence[Mapping], surfaces: Mapping[str, Map
     (each: surface name, ψ, s, hertz, optional ``paper_K_v_poisson`` for the paper's K_v of (75)).
     Variables over (point, column): ``production``, ``reference``; columns are the regime parts
     of A/A0 and W/A0 and K/A0 (totals are their sums)."""
-    import xarray as xr
-
-    from .asperity import paper_K_v
-    from .closures import resolve_material
-    from .elastoplastic import elastoplastic_contact, reference_integrals
-    from .surface import SpectralMoments
-
     prod, ref, labels = [], [], []
     for pt in points:
         surface = SpectralMoments(**surfaces[pt["surface"]])
@@ -134,8 +130,6 @@ def _drive(model, du_steps, k_N, k_Tx, k_Ty, p_N):
     """Run one material point per row of ``du_steps`` (points, steps, 2) of tangential
     increments at a fixed normal pressure p_N (closure u_N = p_N/k_N, constant k_N); returns
     the states after each step, shape (points, steps, NSTATE)."""
-    from . import friction
-
     n_pts, n_steps = du_steps.shape[:2]
     state = friction.initial_state(n_pts, u_N=p_N / k_N, k_N=k_N)
     out = np.empty((n_pts, n_steps, friction.NSTATE))
@@ -155,10 +149,6 @@ def slip_rule_geometry(mu: Mapping[str, tuple], k_values: Sequence[float], *, di
     lands on the limit surface (91)). Variables over (set, k, direction): the final traction
     t_x, t_y [stress], the plastic slip u^p [length], the slip angle α (114) and traction angle
     β (116) [rad], and ν_y/ν_x = (μ_y/μ_x)^k (98)."""
-    import xarray as xr
-
-    from . import friction
-
     phi = np.linspace(0.0, 2.0 * np.pi, directions, endpoint=False)
     names, ks = list(mu), [float(k) for k in k_values]
     shape = (len(names), len(ks), directions)
@@ -197,10 +187,6 @@ def hardening_path(mu_m: float, mu_o: float, n: float, *, k_T: float, p_N: float
     """A material-point slip-hardening curve: monotone slip along x (axis-aligned, so κ_x is
     the plastic slip) in ``steps`` equal increments up to ``slip`` [length] at pressure p_N;
     the traction ratio t_x/p_N against the accumulated slip κ_x, and μ_x(κ_x) of (89)."""
-    import xarray as xr
-
-    from . import friction
-
     model = friction.OrthotropicHardening(mu_m, mu_m, mu_o, mu_o, n, n, k=0.0)
     u = np.linspace(0.0, slip, steps + 1)[1:]
     du = np.zeros((1, steps, 2))
@@ -227,10 +213,6 @@ def fig18_paths(cases: Sequence[str], k_N: float, p_N: float, *, angle_deg: floa
     ``steps`` increments), and — for the symmetry claims — the mirror path with x and y
     exchanged (dim ``path``: "direct", "swapped"). Variables over (case, path, step): imposed
     u_x, u_y, tractions t_x, t_y, plastic slips u^p, dissipation."""
-    import xarray as xr
-
-    from . import friction
-
     th = np.radians(angle_deg)
     ramp = np.concatenate([np.linspace(0.0, u_max, steps + 1), np.linspace(u_max, 0.0, steps + 1)[1:]])
     direct = np.stack([ramp * np.cos(th), ramp * np.sin(th)], axis=-1)
@@ -265,11 +247,6 @@ def fig18_scene(surface: Mapping[str, float], cfg: Mapping, units: Mapping[str, 
     tabulated (interface.NormalLawTable, elasto-plastic) and put in its reference state at the
     initial pressure p0; k_N = k_N(u_N = 0) there, k_T as the preset says (0.7 k_N, or k_N).
     Then :func:`fig18_paths` along the scene's path."""
-    from .asperity import effective_modulus
-    from .closures import resolve_material
-    from .interface import InterfaceLaw, NormalLawTable
-    from .surface import SpectralMoments
-
     moments = SpectralMoments(**surface)
     E = effective_modulus(cfg["E1"], cfg["nu1"], cfg["E2"], cfg["nu2"])  # eq. (42)
     material = resolve_material(moments, E_star=E, psi=cfg["psi"], closure=cfg["closure"])
