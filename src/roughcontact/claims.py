@@ -1,4 +1,5 @@
-"""Prose claims of sections 6, 7 and 10, evaluated on the elasto-plastic figure data.
+"""Prose claims of sections 6–10, evaluated on the figure scenes' data, and the elasto-plastic
+numerics rows.
 
 Each evaluator turns one sentence of the paper into a numerical criterion whose thresholds
 come from the claim's entry in config/config.yaml (with the reason for them), and returns a
