@@ -149,3 +149,56 @@ def test_threads_and_serial_give_the_same_numbers():
     batch = polar_elastic_integrals(l, w_area, w_load, g, "plot")
     single = np.array([polar_elastic_integrals([x], w_area, w_load, g, "plot")[0] for x in l])
     np.testing.assert_array_equal(batch, single)
+
+
+# --------------------------------------------------------------------------------------
+# numba's on-disk cache (docs/performance.md): one signature per kernel, no cross-file calls
+# --------------------------------------------------------------------------------------
+def _dispatchers(module):
+    import numba.core.registry
+
+    return {k: v for k, v in vars(module).items() if isinstance(v, numba.core.registry.CPUDispatcher)}
+
+
+def test_every_kernel_has_one_signature_after_varied_calls():
+    """Concurrent processes sharing numba's cache are safe only while each kernel has one key
+    (two keys written at once can be given the same data file): feed the public API lists,
+    scalars, float32 and non-contiguous arrays, one and many separations, every preset — each
+    kernel must still have compiled exactly one signature."""
+    import roughcontact.quadrature as Q
+    from roughcontact import asperity as asp
+    from roughcontact.contact import bearing_area, elastic_contact
+    from roughcontact.elastoplastic import elastoplastic_contact
+
+    s32 = np.linspace(0.0, 3.0, 10, dtype=np.float32)
+    for acc in ("table", "plot"):
+        elastic_contact(TABLE1, [1.0], 1.0, accuracy=acc)
+        elastic_contact(TABLE1, s32[::2], 1.0, accuracy=acc, hertz="paper")
+        elastic_contact(TABLE1, np.linspace(0, 3, 12), 1.0, accuracy=acc)
+        elastic_contact(TABLE1, 2.0, 1.0, model="gw", accuracy=acc)
+        bearing_area(TABLE1, s32, accuracy=acc)
+        mat = asp.AsperityMaterial(1.0, 1e-3)
+        elastoplastic_contact(TABLE1, [1.0], mat, accuracy=acc)
+        elastoplastic_contact(TABLE1, s32[::3], asp.AsperityMaterial.with_paper_K_v(1.0, 1e-3, 0.3), accuracy=acc)
+    Q.normal_moment(3)
+    Q.gaussian_moments([1, 2])
+    Q.elastic_inner_integrals(np.float32(0.5), [1, 2])
+    Q.asperity_law([1e-3], 2.0, 1.0, 1.0, 1.0, 1e-3, 1.0, 45.0, 1.0, 0.3)
+    many = {k: len(d.signatures) for k, d in _dispatchers(Q).items() if len(d.signatures) > 1}
+    assert not many, many
+
+
+def test_kernels_call_only_kernels_of_their_own_file():
+    """numba invalidates a cached kernel when ITS file changes, not when a callee's file does:
+    every jitted function referenced by a kernel of quadrature.py is defined there (and the J_ν
+    table enters as an argument, not as a global frozen into the cache)."""
+    import roughcontact.quadrature as Q
+
+    kernels = _dispatchers(Q)
+    for name, disp in kernels.items():
+        code = disp.py_func.__code__
+        for ref in code.co_names:
+            obj = disp.py_func.__globals__.get(ref)
+            if hasattr(obj, "py_func"):
+                assert obj.py_func.__module__ == Q.__name__, (name, ref)
+            assert not (isinstance(obj, np.ndarray) and obj.size > 1), (name, ref)

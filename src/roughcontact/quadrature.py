@@ -16,7 +16,7 @@ the interference t inside, against the Gaussian φ(t + l − r g(θ)). What make
   Gauss–Legendre rule (in u = √r next to r = 0, where r^{5/2} is not smooth). Everything is
   scaled by e^{S}, S = l²/(2(1 + g²)), so nothing underflows before the final product.
 * (elastic) θ only through g(θ): the inner r-integrals are computed at Chebyshev–Lobatto
-  nodes in g (17, then 33, 65 if needed: nested) and ln of the scaled integrals is
+  nodes in g (9, then 17, 33, 65 if needed: nested) and ln of the scaled integrals is
   interpolated; the θ-sum then costs one short Clenshaw series per θ-node. If the series has
   not converged to the preset's tolerance at 65 nodes, every θ-node is integrated directly.
 
@@ -59,6 +59,7 @@ __all__ = [
     "elastoplastic_settings_for",
     "asperity_law",
     "polar_elastoplastic_integrals",
+    "warm_up",
 ]
 
 #: −ln of the relative size at which Gaussian tails are cut (e^-40 ≈ 4e-18).
@@ -71,8 +72,8 @@ _EXP_UNDERFLOW = 745.2  # exp(−745.2) < the smallest subnormal double
 #: (5/2, 1/2) of the area, load and stiffness integrands
 _P_MODE = 2.5
 _NU_MODE = 1.0
-#: Chebyshev–Lobatto grids in g: 16, 32, 64 intervals (nested)
-_N_G_START = 16
+#: Chebyshev–Lobatto grids in g: 8, 16, 32, 64 intervals (nested)
+_N_G_START = 8
 _N_G_MAX = 64
 #: the batch is split over threads only above this many separations (a parallel region
 #: costs 10–500 µs on a loaded 2-core machine; one separation is 20–100 µs of work)
@@ -178,14 +179,14 @@ def theta_rule(breakpoints, settings: QuadratureSettings) -> tuple[np.ndarray, n
 
 
 # ---------------------------------------------------------------------------------------
-# J_ν(a) from the Chebyshev tables (normal_moments.py)
+# J_ν(a) from the polynomial tables (Chebyshev interpolants, normal_moments.py)
 # ---------------------------------------------------------------------------------------
 @functools.lru_cache(maxsize=1)
 def _moment_table() -> np.ndarray:
-    """normal_moments.table() as (piece, power, ν) for contiguous loads; passed to the kernels
-    as an argument (numba would freeze a global array into its cache, which is invalidated
-    only when this file changes, not the data file)."""
-    return np.ascontiguousarray(np.transpose(normal_moments.table(), (0, 2, 1)))
+    """normal_moments.table(), shape (piece, ν, power); passed to the kernels as an argument
+    (numba would freeze a global array into its cache, which is invalidated only when this
+    file changes, not the data file)."""
+    return normal_moments.table()
 
 
 _N_SIDE = normal_moments.N_SIDE
@@ -195,31 +196,31 @@ assert normal_moments.N_COEF == 17  # _estrin17
 
 
 @numba.njit(cache=True)
-def _estrin17(cr, q, y, y2, y4, y8, y16):
-    """Σ_{k=0}^{16} cr[k, q] y^k by Estrin's scheme (depth 5 instead of Horner's 16)."""
-    p0 = cr[0, q] + cr[1, q] * y
-    p1 = cr[2, q] + cr[3, q] * y
-    p2 = cr[4, q] + cr[5, q] * y
-    p3 = cr[6, q] + cr[7, q] * y
-    p4 = cr[8, q] + cr[9, q] * y
-    p5 = cr[10, q] + cr[11, q] * y
-    p6 = cr[12, q] + cr[13, q] * y
-    p7 = cr[14, q] + cr[15, q] * y
-    r0 = (p0 + p1 * y2) + (p2 + p3 * y2) * y4
-    r1 = (p4 + p5 * y2) + (p6 + p7 * y2) * y4
-    return r0 + r1 * y8 + cr[16, q] * y16
+def _estrin17(p, y, y2, y4, y8, y16):
+    """Σ_{k=0}^{16} p[k] y^k by Estrin's scheme (depth 5 instead of Horner's 16)."""
+    q0 = p[0] + p[1] * y
+    q1 = p[2] + p[3] * y
+    q2 = p[4] + p[5] * y
+    q3 = p[6] + p[7] * y
+    q4 = p[8] + p[9] * y
+    q5 = p[10] + p[11] * y
+    q6 = p[12] + p[13] * y
+    q7 = p[14] + p[15] * y
+    r0 = (q0 + q1 * y2) + (q2 + q3 * y2) * y4
+    r1 = (q4 + q5 * y2) + (q6 + q7 * y2) * y4
+    return r0 + r1 * y8 + p[16] * y16
 
 
 @numba.njit(cache=True)
 def _poly4(c, row, y):
-    """The four polynomials of table row ``row`` at y ∈ [−1, 1]."""
+    """The four polynomials (ν = 0, 1/2, 1, 3/2) of table row ``row`` at y ∈ [−1, 1]."""
     cr = c[row]
     y2 = y * y
     y4 = y2 * y2
     y8 = y4 * y4
     y16 = y8 * y8
-    return (_estrin17(cr, 0, y, y2, y4, y8, y16), _estrin17(cr, 1, y, y2, y4, y8, y16),
-            _estrin17(cr, 2, y, y2, y4, y8, y16), _estrin17(cr, 3, y, y2, y4, y8, y16))
+    return (_estrin17(cr[0], y, y2, y4, y8, y16), _estrin17(cr[1], y, y2, y4, y8, y16),
+            _estrin17(cr[2], y, y2, y4, y8, y16), _estrin17(cr[3], y, y2, y4, y8, y16))
 
 
 @numba.njit(cache=True)
@@ -297,7 +298,8 @@ def _mode_above(g, l):
     the root of −r + p/r + ν g/(r g − l) (decreasing from +∞ to −∞), safeguarded Newton."""
     b = l / g if l > 0.0 else 0.0
     lo = b
-    hi = b + math.sqrt(_P_MODE + _NU_MODE) + 2.0  # f(hi) < 0 (docs/performance.md)
+    # f(hi) < 0: with d = r − b ≥ √(p + ν) + 2 ≈ 3.87, −r + p/r + ν/d ≤ −3.87 + 0.65 + 0.26
+    hi = b + math.sqrt(_P_MODE + _NU_MODE) + 2.0
     r = 0.5 * (lo + hi)
     for _ in range(60):
         a = r * g - l
@@ -445,7 +447,7 @@ def _elastic_direct(l, w_area, w_load, g, y, w, jt, cuts):
 def _elastic_interpolated(l, w_area, w_load, g, xg, g_mid, g_half, y, w, tol, cosm, jt, cuts, vals, coef):
     """The θ-sum with ln(e^{S} I_q)(g) interpolated at Chebyshev–Lobatto nodes in g.
 
-    vals[m] holds the values at node m of the finest grid (_N_G_MAX intervals); grids of 16,
+    vals[m] holds the values at node m of the finest grid (_N_G_MAX intervals); grids of 8, 16,
     32, 64 intervals nest. Converged when the last three coefficients of every series are
     ≤ tol. Returns (area, load, stiffness, ok); ok False: not converged or a value ≤ 0."""
     n_max = _N_G_MAX
@@ -603,8 +605,8 @@ def elastic_inner_integrals(g, l, accuracy="table") -> np.ndarray:
     """The inner r-integrals (I_area, I_load, I_stiffness) at pairs (g, l), as the kernels
     compute them (for the tests: a twin with scipy.integrate.quad checks the r-rule)."""
     g, l = np.broadcast_arrays(np.asarray(g, dtype=float), np.asarray(l, dtype=float))
-    g = np.ascontiguousarray(g.reshape(-1))
-    l = np.ascontiguousarray(l.reshape(-1))
+    g = np.array(g.reshape(-1))  # writable copies (broadcast views would type as read-only)
+    l = np.array(l.reshape(-1))
     if not (np.all(np.isfinite(g)) and np.all(g > 0) and np.all(np.isfinite(l))):
         raise ValueError("g must be finite and positive, l finite")
     y, w = gauss_legendre(settings_for(accuracy).r_nodes)
@@ -756,13 +758,17 @@ def _t_elastic(lo, hi, a, e, y, w):
 
 @numba.njit(cache=True)
 def _t_ep_piece(lo, hi, a, e, yt, wt, in_log, sigma, kappa, f1, f3, wc, ratio, cH, dp, ln_r):
-    """e^{e} ∫_lo^hi (A, W, dW/dω)(σ t) φ(t − a) dt with the elasto-plastic law (76), (77);
-    Gauss–Legendre in t, or in ln t when ``in_log`` (the law holds ln t: a piece reaching
-    towards t = 0, up to t_p/t_c = 45, would converge only algebraically in t); the rule of
-    _t_rule_row."""
+    """e^{e} ∫_lo^hi (A, W, dW/dω)(σ t) φ(t − a) dt with the elasto-plastic law (76), (77), and
+    at the same nodes e^{e} ∫_lo^hi (t^{1/2}, t, t^{3/2}) φ(t − a) dt (for the complement of
+    the elastic part); Gauss–Legendre in t, or in ln t when ``in_log`` (the law holds ln t: a
+    piece reaching towards t = 0, up to t_p/t_c = 45, would converge only algebraically in
+    t); the rule of _t_rule_row."""
     acc_a = 0.0
     acc_w = 0.0
     acc_s = 0.0
+    m_h = 0.0
+    m_1 = 0.0
+    m_3 = 0.0
     span = math.log(hi / lo) if in_log else hi - lo
     row = _t_rule_row(lo, hi, a, span if in_log else 0.0)
     y = yt[row]
@@ -782,7 +788,11 @@ def _t_ep_piece(lo, hi, a, e, yt, wt, in_log, sigma, kappa, f1, f3, wc, ratio, c
         acc_a += f * A
         acc_w += f * W
         acc_s += f * S
-    return acc_a, acc_w, acc_s
+        st = math.sqrt(t)
+        m_h += f * st
+        m_1 += f * t
+        m_3 += f * t * st
+    return acc_a, acc_w, acc_s, m_h, m_1, m_3
 
 
 @numba.njit(cache=True)
@@ -790,9 +800,11 @@ def _t_ep(lo, hi, a, e, y, w, sigma, kappa, f1, f3, wc, ratio, cH, dp, ln_r):
     """_t_ep_piece on [lo, hi] (lo ≥ t_c > 0), split at the peak t = a if inside; in ln t
     where a piece starts near 0 relative to its length (lo < hi/2)."""
     if lo < a < hi:
-        a1, w1, s1 = _t_ep_piece(lo, a, a, e, y, w, lo < 0.5 * a, sigma, kappa, f1, f3, wc, ratio, cH, dp, ln_r)
-        a2, w2, s2 = _t_ep_piece(a, hi, a, e, y, w, a < 0.5 * hi, sigma, kappa, f1, f3, wc, ratio, cH, dp, ln_r)
-        return a1 + a2, w1 + w2, s1 + s2
+        a1, w1, s1, h1, o1, t1 = _t_ep_piece(lo, a, a, e, y, w, lo < 0.5 * a, sigma, kappa, f1, f3, wc, ratio, cH,
+                                             dp, ln_r)
+        a2, w2, s2, h2, o2, t2 = _t_ep_piece(a, hi, a, e, y, w, a < 0.5 * hi, sigma, kappa, f1, f3, wc, ratio, cH,
+                                             dp, ln_r)
+        return a1 + a2, w1 + w2, s1 + s2, h1 + h2, o1 + o2, t1 + t2
     return _t_ep_piece(lo, hi, a, e, y, w, lo < 0.5 * hi, sigma, kappa, f1, f3, wc, ratio, cH, dp, ln_r)
 
 
@@ -847,18 +859,27 @@ def _ep_r_piece(lo, hi, in_sqrt, l, g, c, f1, f2, f3, tc1, S, sigma, E_star, rat
             acc[5] += wr * cp_a * cH * j1
             acc[6] += wr * cp_s * j0
         else:
-            if tc > t_lo:
-                mh, m1, m3 = _t_elastic(t_lo, tc, a, e, y_t, w_t)
-                acc[0] += wr * ce_a * m1
-                acc[3] += wr * ce_w * m3
-                acc[6] += wr * ce_s * mh
             ep_lo = max(t_lo, tc)
             ep_hi = min(t_hi, tp)
+            mh = m1 = m3 = 0.0
             if ep_lo < ep_hi:
-                A, W, Sd = _t_ep(ep_lo, ep_hi, a, e, y_t, w_t, sigma, kappa, f1, f3, wc, ratio, cH, dp, ln_r)
+                A, W, Sd, mh, m1, m3 = _t_ep(ep_lo, ep_hi, a, e, y_t, w_t, sigma, kappa, f1, f3, wc, ratio, cH, dp,
+                                             ln_r)
                 acc[1] += wr * A
                 acc[4] += wr * W
                 acc[6] += wr * Sd
+            if tc > t_lo:
+                if tp >= t_hi and tc >= 0.5 * (a + math.sqrt(a * a + 4.0)):
+                    # the window above t_c is all elasto-plastic and t_c lies above the mode of
+                    # t φ(t − a) (the elastic part is a large share, so the difference does not
+                    # cancel): the closed form minus the t^ν-integrals at the nodes of that piece
+                    _, jh, j1, j3 = _moments(a, e, jt)
+                    mh, m1, m3 = jh - mh, j1 - m1, j3 - m3
+                else:
+                    mh, m1, m3 = _t_elastic(t_lo, tc, a, e, y_t, w_t)
+                acc[0] += wr * ce_a * m1
+                acc[3] += wr * ce_w * m3
+                acc[6] += wr * ce_s * mh
             if tp < t_hi:
                 j0, _, j1, _ = _moments(a - tp, e, jt)
                 p1 = tp * j0 + j1
@@ -956,7 +977,7 @@ def asperity_law(omega, kappa, f1, f2, f3, wc, E_star, ratio, cH, dp) -> np.ndar
     """The numba per-asperity law at arrays of points; columns (A, W, dW/dω, regime).
     Mirrors asperity.respond (used by the tests to compare the two)."""
     arrs = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (omega, kappa, f1, f2, f3, wc)))
-    flat = [np.ascontiguousarray(a.reshape(-1)) for a in arrs]
+    flat = [np.array(a.reshape(-1)) for a in arrs]  # writable copies: one kernel signature
     out = np.empty((flat[0].shape[0], 4))
     _asperity_law_array(*flat, float(E_star), float(ratio), float(cH), float(dp), math.log(ratio), out)
     return out
@@ -1011,3 +1032,22 @@ ELASTOPLASTIC_PRESETS: dict[str, QuadratureSettings] = {
 def elastoplastic_settings_for(accuracy) -> QuadratureSettings:
     """Resolve an elasto-plastic accuracy preset name (or pass a QuadratureSettings through)."""
     return settings_for(accuracy, ELASTOPLASTIC_PRESETS)
+
+
+def warm_up() -> None:
+    """Compile (or load from numba's cache) every production kernel, serial and threaded, on
+    tiny inputs: for a workflow step that runs once before parallel jobs, so that they do not
+    all compile at the same time on a cold cache (docs/performance.md, caching)."""
+    from .asperity import AsperityMaterial
+    from .contact import elastic_contact
+    from .elastoplastic import elastoplastic_contact
+    from .surface import SpectralMoments
+
+    surface = SpectralMoments(0.0625, 8e-5, 8e-4, 1.04e-6, 1.04e-4)
+    many = np.linspace(0.0, 1.0, _PARALLEL_MIN)
+    for s in ([1.0], many):
+        elastic_contact(surface, s, 1.0, accuracy="plot")
+        elastoplastic_contact(surface, s, AsperityMaterial(1.0, 1e-3), accuracy="plot")
+    elastic_contact(surface, [1.0], 1.0, model="gw")
+    elastic_inner_integrals([0.5], [1.0])
+    asperity_law([1e-3], 2.0, 1.0, 1.0, 1.0, 1e-3, 1.0, 45.0, 1.0, 0.3)

@@ -1,0 +1,145 @@
+"""Reference values of the speed-against-error benchmark, cached in one JSON file so re-runs do
+not recompute them.
+
+* elastic: the mpmath integrator (roughcontact.reference, dps = 20, ≥ 15 correct digits);
+* elasto-plastic: there is no mpmath reference — a 3-D mpmath quadrature of the piecewise
+  integrand would need ~1e8 evaluations per point — so the reference is the scipy slow twin
+  elastoplastic.reference_integrals at rtol 1e-10. Its limits are checked against mpmath:
+  ψ → 0 must give the elastic mpmath integrals (:func:`elastic_limit_check`), ψ → ∞ must give
+  A = D_sum ∫ 2 f3 π ω/κ_m p_sum (every contacting summit fully plastic, (61)), the elastic area
+  integral with f1 replaced by 2 f3, evaluated here with the mpmath inner integral
+  (reference.inner_integral) and mpmath's tanh-sinh in θ (:func:`plastic_limit_area`).
+
+Cache keys hold everything a value depends on (moments, s, Hertz option, dps / rtol,
+material); a changed input is a new key, never a stale hit.
+"""
+
+from __future__ import annotations
+
+import json
+import time
+from pathlib import Path
+
+import mpmath as mp
+import numpy as np
+
+from roughcontact import SpectralMoments
+from roughcontact import reference as R
+from roughcontact.asperity import AsperityMaterial, yield_strength_for_plasticity_index
+from roughcontact.contact import elastic_contact
+from roughcontact.elastoplastic import reference_integrals
+from roughcontact.polar import ElasticPrefactors, PolarGeometry
+
+E_STAR = 1.14e5  # N/mm², the paper's tables and figures
+
+
+def material_for(psi: float, surface: SpectralMoments) -> AsperityMaterial:
+    """The closure of Figs 5–8: E* fixed, Y from the prescribed ψ (asperity module)."""
+    return AsperityMaterial(E_STAR, yield_strength_for_plasticity_index(psi, surface, E_STAR))
+
+
+class ReferenceCache:
+    """A JSON file of {key: record}; :meth:`get` computes and stores on a miss."""
+
+    def __init__(self, path: Path):
+        self.path = Path(path)
+        self.data = json.loads(self.path.read_text()) if self.path.exists() else {}
+
+    def get(self, key: str, compute):
+        if key not in self.data:
+            t0 = time.perf_counter()
+            value = compute()
+            self.data[key] = {"value": value, "seconds": time.perf_counter() - t0}
+            self.save()
+        return self.data[key]["value"]
+
+    def save(self) -> None:
+        self.path.parent.mkdir(parents=True, exist_ok=True)
+        tmp = self.path.with_suffix(".part")
+        tmp.write_text(json.dumps(self.data, indent=1, sort_keys=True))
+        tmp.replace(self.path)
+
+
+def _surface_key(surface: SpectralMoments) -> str:
+    return ",".join(f"{v!r}" for v in surface.as_dict().values())
+
+
+def elastic(cache: ReferenceCache, surface: SpectralMoments, s: float, hertz: str = "exact", dps: int = 20):
+    """(A/A0, W/A0, K/A0) at E* = 1 from the mpmath integrator."""
+    key = f"elastic|{_surface_key(surface)}|s={s!r}|{hertz}|dps={dps}"
+
+    def compute():
+        c = elastic_contact(surface, [s], 1.0, hertz=hertz, method="reference", dps=dps)
+        return [float(c.area_fraction[0]), float(c.pressure[0]), float(c.stiffness[0])]
+
+    return np.array(cache.get(key, compute))
+
+
+def elastoplastic(cache: ReferenceCache, surface: SpectralMoments, s: float, psi: float, hertz: str = "exact",
+                  rtol: float = 1e-10):
+    """(A/A0, W/A0, K/A0) and the parts (A^e, A^ep, A^p, W^e, W^ep, W^p) from the scipy twin."""
+    mat = material_for(psi, surface)
+    key = f"elastoplastic|{_surface_key(surface)}|s={s!r}|psi={psi!r}|{hertz}|rtol={rtol!r}|Y={mat.Y!r}"
+
+    def compute():
+        cols = reference_integrals(surface, s, mat, hertz=hertz, rtol=rtol)
+        return [float(cols[:3].sum()), float(cols[3:6].sum()), float(cols[6]), *map(float, cols[:6])]
+
+    return np.array(cache.get(key, compute))
+
+
+def elastic_limit_check(cache: ReferenceCache, surface: SpectralMoments, s: float, psi: float = 1e-3) -> float:
+    """Largest relative difference of the twin at small ψ (every summit elastic) from the
+    elastic mpmath reference, over A, W, K (E* = 1.14e5 for both)."""
+    twin = elastoplastic(cache, surface, s, psi)[:3]
+    ref = elastic(cache, surface, s) * np.array([1.0, E_STAR, E_STAR])
+    return float(np.max(np.abs(twin / ref - 1.0)))
+
+
+def plastic_limit_area(cache: ReferenceCache, surface: SpectralMoments, s: float, dps: int = 16) -> float:
+    """A/A0 when every contacting summit is fully plastic: π D_sum √(m00 μ) ∫ dθ cs 2f3/c
+    ∫ dr r² e^{−r²/2} J_1(r g − l), by mpmath (inner integral reference.inner_integral,
+    f3 = E/(2 e1 B) from mpmath's Carlson forms, tanh-sinh in θ split at θ*)."""
+    key = f"plastic_limit_area|{_surface_key(surface)}|s={s!r}|dps={dps}"
+
+    def compute():
+        geom = PolarGeometry(surface)
+        l = float(surface.l_from_s(s))
+        with mp.workdps(dps):
+            def integrand(theta):
+                th = float(theta)
+                lam2 = float(geom.lambda_squared(th))
+                e1 = R.exact_e1(lam2)
+                with mp.extradps(15):
+                    _, E, _, B = R._carlson(e1 * e1)
+                    f3 = E / (2 * e1 * B)  # (59) rearranged, ellipse.f3
+                cs = mp.cos(theta) * mp.sin(theta)
+                inner, _ = R.inner_integral("area", float(geom.g(th)), l, dps=dps)
+                return cs * 2 * f3 / float(geom.c(th)) * inner
+
+            val = mp.quad(integrand, [0, geom.theta_circle, mp.pi / 2])
+        return float(ElasticPrefactors.of(surface).area * val)
+
+    return float(cache.get(key, compute))
+
+
+def plastic_limit_check(cache: ReferenceCache, surface: SpectralMoments, s: float, psi: float = 1e4) -> float:
+    """Relative difference of the twin's area at large ψ from :func:`plastic_limit_area`."""
+    twin = elastoplastic(cache, surface, s, psi)[0]
+    return float(abs(twin / plastic_limit_area(cache, surface, s) - 1.0))
+
+
+def mpmath_time(surface: SpectralMoments, s: float, hertz: str = "exact", dps: int = 20) -> float:
+    """Wall time of one elastic mpmath reference separation (A, W, K), after a first call on
+    the surface has memoised its θ-node Hertz factors."""
+    l = float(surface.l_from_s(s))
+    R.elastic_integrals(surface, l + 0.01, hertz=hertz, dps=dps)  # set-up: θ-node factors
+    t0 = time.perf_counter()
+    R.elastic_integrals(surface, l, hertz=hertz, dps=dps)
+    return time.perf_counter() - t0
+
+
+def mpmath_values(surface: SpectralMoments, s: float, hertz: str = "exact", dps: int = 12) -> np.ndarray:
+    """(A/A0, W/A0, K/A0) at E* = 1 from the mpmath integrator at a lower precision."""
+    c = elastic_contact(surface, [s], 1.0, hertz=hertz, method="reference", dps=dps)
+    return np.array([c.area_fraction[0], c.pressure[0], c.stiffness[0]])
