@@ -2,6 +2,7 @@
 # and the slice of the configuration recorded as provenance in each result.
 
 import copy
+import sys
 from pathlib import Path
 
 REPO = Path(workflow.basedir)
@@ -44,6 +45,9 @@ PHYSICS_SOURCES = sorted(
     for p in (REPO / "src" / "roughcontact").glob("*.py")
     if p.name not in _NOT_PHYSICS
 )
+#: stamp of the numba_warmup job: the rules that call the numba kernels take it as input, so
+#: that a cold cache is compiled once, not once per parallel job (docs/performance.md).
+KERNELS_WARM = "results/numba/warm.stamp"
 REPORT_SOURCES = [
     str(REPO / "src" / "roughcontact" / name)
     for name in ("verify.py", "plots.py", "io.py")

@@ -4,6 +4,23 @@
 #   production  numba at the scene's accuracy preset: results/production/
 
 
+rule numba_warmup:
+    """Compile every numba kernel once into numba's on-disk cache (or load it), before the jobs
+    that use them run in parallel (quadrature.warm_up; docs/performance.md, caching). Local:
+    on a cluster it compiles on the submit host, into the shared cache, without queueing."""
+    localrule: True
+    input:
+        lib=PHYSICS_SOURCES,
+    output:
+        touch(KERNELS_WARM),
+    log:
+        "logs/numba_warmup.log",
+    params:
+        py=sys.executable,
+    shell:
+        "{params.py} -c 'from roughcontact.quadrature import warm_up; warm_up()' > {log} 2>&1"
+
+
 rule reference:
     """mpmath reference values of one table scene and model level (slow: cached per dps)."""
     input:
@@ -29,6 +46,7 @@ rule production:
     """Production (numba) values of one table scene and model level at its accuracy preset."""
     input:
         lib=PHYSICS_SOURCES,
+        kernels=KERNELS_WARM,
     output:
         "results/production/{scene}/{model}.nc",
     log:

@@ -7,6 +7,7 @@ rule curves_bearing_ratio:
     """A_G/A_B(s) of each surface of a bearing-ratio scene (Fig. 3), production quadrature."""
     input:
         lib=PHYSICS_SOURCES,
+        kernels=KERNELS_WARM,
     output:
         "results/curves/{scene}.nc",
     log:
@@ -49,6 +50,7 @@ rule curves_elastoplastic:
     surfaces, plasticity indices, closures and separations the scene declares."""
     input:
         lib=PHYSICS_SOURCES,
+        kernels=KERNELS_WARM,
     output:
         "results/curves/{scene}.nc",
     log:

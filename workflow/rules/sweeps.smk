@@ -7,6 +7,7 @@ rule sweep_part:
     """One part of a sweep (roughcontact.sweep.split): the elasto-plastic model over its grid."""
     input:
         lib=PHYSICS_SOURCES,
+        kernels=KERNELS_WARM,
     output:
         "results/sweeps/{sweep}/part-{part}.nc",
     log:

@@ -12,6 +12,7 @@ rule numerics_elastoplastic:
     the twin is a nested adaptive cubature; one job per point so they run in parallel)."""
     input:
         lib=PHYSICS_SOURCES,
+        kernels=KERNELS_WARM,
     output:
         "results/numerics/{scene}/point-{point}.nc",
     log:
