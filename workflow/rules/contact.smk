@@ -15,6 +15,8 @@ rule numba_warmup:
         touch(KERNELS_WARM),
     log:
         "logs/numba_warmup.log",
+    benchmark:
+        "results/benchmarks/rules/numba_warmup.tsv"
     params:
         py=sys.executable,
     shell:
