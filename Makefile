@@ -43,7 +43,8 @@ reproduce: $(STAMP)
 	$(SNAKEMAKE) all && \
 	$(PY) workflow/scripts/record_wall_time.py --seconds $$(( $$(date +%s) - start )) --cores $(CORES) --fresh $$fresh
 
-# speed against error, full mode (~1-2 h on 2 cores the first time; references are cached)
+# speed against error, full mode (~5 min on 2 cores; the naive tplquad, 10-60 min per quantity,
+# runs only where benchmarks/data/tplquad.json has no record; mpmath references are cached)
 bench: $(STAMP)
 	$(SNAKEMAKE) speed_vs_error --config benchmark_mode=full
 
