@@ -9,13 +9,13 @@ from roughcontact import __version__, io, verify
 
 
 def _speed_section(path):
-    """The benchmark report fragment, its headings pushed one level down, and where the
-    workflow's own wall time is recorded."""
-    body = "\n".join(("#" + line) if line.startswith("#") else line for line in Path(path).read_text().splitlines())
+    """The benchmark report fragment without its title (this section's heading replaces it),
+    its other headings pushed one level down."""
+    lines = [line for line in Path(path).read_text().splitlines() if not line.startswith("# ")]
+    body = "\n".join(("#" + line) if line.startswith("#") else line for line in lines)
     return (
         "Measured by `snakemake speed_vs_error` (benchmarks/speed_vs_error.py; `make bench` for the "
-        "full mode). The wall time of the whole reproduction is written by `make reproduce` after "
-        "the workflow ends, to [reproduction_time.md](reproduction_time.md).\n\n" + body.strip() + "\n"
+        "full mode; docs/performance.md explains the integrators and the profile).\n\n" + body.strip() + "\n"
     )
 
 
