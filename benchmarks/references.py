@@ -25,7 +25,8 @@ import numpy as np
 
 from roughcontact import SpectralMoments
 from roughcontact import reference as R
-from roughcontact.asperity import AsperityMaterial, yield_strength_for_plasticity_index
+from roughcontact.asperity import AsperityMaterial
+from roughcontact.closures import resolve_material
 from roughcontact.contact import elastic_contact
 from roughcontact.elastoplastic import reference_integrals
 from roughcontact.polar import ElasticPrefactors, PolarGeometry
@@ -34,8 +35,21 @@ E_STAR = 1.14e5  # N/mm², the paper's tables and figures
 
 
 def material_for(psi: float, surface: SpectralMoments) -> AsperityMaterial:
-    """The closure of Figs 5–8: E* fixed, Y from the prescribed ψ (asperity module)."""
-    return AsperityMaterial(E_STAR, yield_strength_for_plasticity_index(psi, surface, E_STAR))
+    """The closure of Figs 5–8: E* fixed, Y from the prescribed ψ ("yield-from-psi")."""
+    return resolve_material(surface, E_star=E_STAR, psi=psi)
+
+
+def first_values(curves) -> np.ndarray:
+    """(A/A0, W/A0, K/A0) at the first separation of a contact result."""
+    return np.array([curves.area_fraction[0], curves.pressure[0], curves.stiffness[0]], dtype=float)
+
+
+def twin_values(surface: SpectralMoments, s: float, material: AsperityMaterial, hertz: str = "exact",
+                rtol: float = 1e-10) -> np.ndarray:
+    """The scipy twin's totals (A/A0, W/A0, K/A0) followed by its parts (A^e, A^ep, A^p, W^e,
+    W^ep, W^p)."""
+    cols = reference_integrals(surface, s, material, hertz=hertz, rtol=rtol)
+    return np.array([cols[:3].sum(), cols[3:6].sum(), cols[6], *cols[:6]], dtype=float)
 
 
 class ReferenceCache:
@@ -68,11 +82,7 @@ def elastic(cache: ReferenceCache, surface: SpectralMoments, s: float, hertz: st
     """(A/A0, W/A0, K/A0) at E* = 1 from the mpmath integrator."""
     key = f"elastic|{_surface_key(surface)}|s={s!r}|{hertz}|dps={dps}"
 
-    def compute():
-        c = elastic_contact(surface, [s], 1.0, hertz=hertz, method="reference", dps=dps)
-        return [float(c.area_fraction[0]), float(c.pressure[0]), float(c.stiffness[0])]
-
-    return np.array(cache.get(key, compute))
+    return np.array(cache.get(key, lambda: mpmath_values(surface, s, hertz=hertz, dps=dps).tolist()))
 
 
 def elastoplastic(cache: ReferenceCache, surface: SpectralMoments, s: float, psi: float, hertz: str = "exact",
@@ -81,11 +91,7 @@ def elastoplastic(cache: ReferenceCache, surface: SpectralMoments, s: float, psi
     mat = material_for(psi, surface)
     key = f"elastoplastic|{_surface_key(surface)}|s={s!r}|psi={psi!r}|{hertz}|rtol={rtol!r}|Y={mat.Y!r}"
 
-    def compute():
-        cols = reference_integrals(surface, s, mat, hertz=hertz, rtol=rtol)
-        return [float(cols[:3].sum()), float(cols[3:6].sum()), float(cols[6]), *map(float, cols[:6])]
-
-    return np.array(cache.get(key, compute))
+    return np.array(cache.get(key, lambda: twin_values(surface, s, mat, hertz=hertz, rtol=rtol).tolist()))
 
 
 def elastic_limit_check(cache: ReferenceCache, surface: SpectralMoments, s: float, psi: float = 1e-3) -> float:
@@ -100,7 +106,7 @@ def plastic_limit_area(cache: ReferenceCache, surface: SpectralMoments, s: float
     """A/A0 when every contacting summit is fully plastic: π D_sum √(m00 μ) ∫ dθ cs 2f3/c
     ∫ dr r² e^{−r²/2} J_1(r g − l), by mpmath (inner integral reference.inner_integral,
     f3 = E/(2 e1 B) from mpmath's Carlson forms, tanh-sinh in θ split at θ*)."""
-    key = f"plastic_limit_area|{_surface_key(surface)}|s={s!r}|dps={dps}"
+    key = _plastic_limit_key(surface, s, dps)
 
     def compute():
         geom = PolarGeometry(surface)
@@ -123,6 +129,15 @@ def plastic_limit_area(cache: ReferenceCache, surface: SpectralMoments, s: float
     return float(cache.get(key, compute))
 
 
+def _plastic_limit_key(surface: SpectralMoments, s: float, dps: int = 16) -> str:
+    return f"plastic_limit_area|{_surface_key(surface)}|s={s!r}|dps={dps}"
+
+
+def plastic_limit_cached(cache: ReferenceCache, surface: SpectralMoments, s: float) -> bool:
+    """Whether :func:`plastic_limit_area` at (surface, s) is already in the cache."""
+    return _plastic_limit_key(surface, s) in cache.data
+
+
 def plastic_limit_check(cache: ReferenceCache, surface: SpectralMoments, s: float, psi: float = 1e4) -> float:
     """Relative difference of the twin's area at large ψ from :func:`plastic_limit_area`."""
     twin = elastoplastic(cache, surface, s, psi)[0]
@@ -140,6 +155,5 @@ def mpmath_time(surface: SpectralMoments, s: float, hertz: str = "exact", dps: i
 
 
 def mpmath_values(surface: SpectralMoments, s: float, hertz: str = "exact", dps: int = 12) -> np.ndarray:
-    """(A/A0, W/A0, K/A0) at E* = 1 from the mpmath integrator at a lower precision."""
-    c = elastic_contact(surface, [s], 1.0, hertz=hertz, method="reference", dps=dps)
-    return np.array([c.area_fraction[0], c.pressure[0], c.stiffness[0]])
+    """(A/A0, W/A0, K/A0) at E* = 1 from the mpmath integrator at ``dps`` digits."""
+    return first_values(elastic_contact(surface, [s], 1.0, hertz=hertz, method="reference", dps=dps))

@@ -47,7 +47,7 @@ import report  # noqa: E402
 
 from roughcontact import SpectralMoments  # noqa: E402
 from roughcontact.contact import elastic_contact  # noqa: E402
-from roughcontact.elastoplastic import elastoplastic_contact, reference_integrals  # noqa: E402
+from roughcontact.elastoplastic import elastoplastic_contact  # noqa: E402
 from roughcontact.quadrature import QuadratureSettings as QS  # noqa: E402
 
 SURFACES = {
@@ -100,6 +100,11 @@ class Row:
         }
 
 
+def _relative_errors(values, ref) -> list:
+    """|value/reference − 1| per quantity."""
+    return [float(abs(v / r - 1.0)) for v, r in zip(values, ref)]
+
+
 def _timed(fn, n_sep=1):
     t0 = time.perf_counter()
     v = fn()
@@ -109,10 +114,7 @@ def _timed(fn, n_sep=1):
 def _elastic_methods(surface, s, quick):
     m = {}
     for name, acc in ELASTIC_SETTINGS.items():
-        def f(acc=acc):
-            c = elastic_contact(surface, [s], 1.0, accuracy=acc)
-            return np.array([c.area_fraction[0], c.pressure[0], c.stiffness[0]])
-        m[name] = ("production", f)
+        m[name] = ("production", lambda acc=acc: refs.first_values(elastic_contact(surface, [s], 1.0, accuracy=acc)))
     for n in ((16, 50) if quick else (16, 32, 50, 100, 200)):
         m[f"GL-{n}³" + (" (paper)" if n == 50 else "")] = (
             "GL product rule", lambda n=n: baselines.product_rule(surface, s, n=n))
@@ -123,18 +125,12 @@ def _ep_methods(surface, s, quick):
     mat = refs.material_for(PSI, surface)
     m = {}
     for name, acc in EP_SETTINGS.items():
-        def f(acc=acc):
-            c = elastoplastic_contact(surface, [s], mat, accuracy=acc)
-            return np.array([c.area_fraction[0], c.pressure[0], c.stiffness[0]])
-        m[name] = ("production", f)
+        m[name] = ("production", lambda acc=acc: refs.first_values(elastoplastic_contact(surface, [s], mat, accuracy=acc)))
     for n in ((16, 50) if quick else (16, 32, 50, 100)):
         m[f"GL-{n}³" + (" (paper)" if n == 50 else "")] = (
             "GL product rule", lambda n=n: baselines.product_rule(surface, s, n=n, kind="elastoplastic", material=mat))
     for rtol in (() if quick else (1e-4, 1e-6, 1e-8)):
-        def twin(rtol=rtol):
-            c = reference_integrals(surface, s, mat, rtol=rtol)
-            return np.array([c[:3].sum(), c[3:6].sum(), c[6]])
-        m[f"scipy twin rtol={rtol:g}"] = ("scipy twin", twin)
+        m[f"scipy twin rtol={rtol:g}"] = ("scipy twin", lambda rtol=rtol: refs.twin_values(surface, s, mat, rtol=rtol)[:3])
     return m
 
 
@@ -150,7 +146,7 @@ def _run_point(model, point, methods, ref, repeat, rows):
                 _, dt = _timed(fn)
                 by_name[name].seconds.append(dt)
     for row in by_name.values():
-        row.errors = [float(abs(v / r - 1.0)) for v, r in zip(row.values, ref)]
+        row.errors = _relative_errors(row.values, ref)
         rows.append(row)
 
 
@@ -168,8 +164,8 @@ def _batch_rows(model, point, surface, s, ref, rows):
         for _ in range(3):
             c, dt = _timed(fn, 64)
             row.seconds.append(dt)
-        v = np.array([c.area_fraction[0], c.pressure[0], c.stiffness[0]])
-        row.errors = [float(abs(a / b - 1.0)) for a, b in zip(v, ref)]
+        v = refs.first_values(c)
+        row.errors = _relative_errors(v, ref)
         rows.append(row)
 
 
@@ -177,13 +173,13 @@ def _mpmath_rows(point, surface, s, ref, rows):
     for dps in (8, 12):
         v, dt = _timed(lambda dps=dps: refs.mpmath_values(surface, s, dps=dps))
         rows.append(Row("elastic", point, f"mpmath dps={dps}", "mpmath", [dt], v,
-                        [float(abs(a / b - 1.0)) for a, b in zip(v, ref)]))
+                        _relative_errors(v, ref)))
     dt = refs.mpmath_time(surface, s, dps=20)
     rows.append(Row("elastic", point, "mpmath dps=20 (reference)", "mpmath", [dt], ref, [0.0, 0.0, 0.0],
                     note="the reference itself: error ≤ 1e-15 by construction"))
 
 
-def _tplquad_rows(cache_path: Path, quick: bool, rows):
+def _tplquad_rows(cache_path: Path, references: refs.ReferenceCache, quick: bool, rows):
     """The naive scipy tplquad: one point, each quantity once (10–60 min each); cached with the
     time it took and the load average (TPLQUAD_CACHE, in the repository), reused by later runs
     and marked as cached in the report."""
@@ -205,18 +201,14 @@ def _tplquad_rows(cache_path: Path, quick: bool, rows):
             cache[key] = {"value": v, "seconds": dt, "loadavg": load, "date": time.strftime("%Y-%m-%d")}
             cache_path.write_text(json.dumps(cache, indent=1))
         rec = cache[key]
-        rows.append(_tplquad_row(model, f"{sname} s={s}", quantity, rec))
-
-
-def _tplquad_row(model, point, quantity, rec):
-    q = ("area", "load", "stiffness").index(quantity)
-    row = Row(model, point, f"scipy tplquad ({quantity} only)", "scipy tplquad", [rec["seconds"]],
-              note=f"measured {rec['date']}, load {rec['loadavg']:.2f}; cached")
-    row.values = np.full(3, np.nan)
-    row.values[q] = rec["value"]
-    row.errors = [None, None, None]
-    row.quantity_index = q
-    return row
+        ref = refs.elastic(references, surface, s) if model == "elastic" else refs.elastoplastic(references, surface, s, PSI)
+        q = ("area", "load", "stiffness").index(quantity)
+        row = Row(model, f"{sname} s={s}", f"scipy tplquad ({quantity} only)", "scipy tplquad", [rec["seconds"]],
+                  values=np.full(3, np.nan), errors=[None, None, None],
+                  note=f"measured {rec['date']}, load {rec['loadavg']:.2f}; cached")
+        row.values[q] = rec["value"]
+        row.errors[q] = _relative_errors([rec["value"]], [ref[q]])[0]
+        rows.append(row)
 
 
 def main(argv=None) -> int:
@@ -267,19 +259,12 @@ def main(argv=None) -> int:
         _run_point("elastoplastic", point, _ep_methods(surface, s, quick), ref, repeat, rows)
         _batch_rows("elastoplastic", point, surface, s, ref, rows)
         print(f"[{time.perf_counter() - t_start:7.1f} s] elastoplastic {point}", flush=True)
-    _tplquad_rows(TPLQUAD_CACHE, quick, rows)
-    for row in rows:  # tplquad errors against the reference of its point
-        if row.family == "scipy tplquad":
-            sname, s = row.point.split(" s=")
-            ref = (refs.elastic(cache, SURFACES[sname], float(s)) if row.model == "elastic"
-                   else refs.elastoplastic(cache, SURFACES[sname], float(s), PSI)[:3])
-            q = row.quantity_index
-            row.errors[q] = float(abs(row.values[q] / ref[q] - 1.0))
+    _tplquad_rows(TPLQUAD_CACHE, cache, quick, rows)
 
     checks = {}
     limit_points = [("table1", 1.0)] if quick else [("table1", 1.0), ("aniso1e4", 0.0)]
     for sname, s in limit_points:
-        if quick and f"plastic_limit_area|{refs._surface_key(SURFACES[sname])}|s={s!r}|dps=16" not in cache.data:
+        if quick and not refs.plastic_limit_cached(cache, SURFACES[sname], s):
             continue
         checks[f"{sname} s={s}"] = {
             "twin psi=1e-3 vs elastic mpmath (max rel over A, W, K)": refs.elastic_limit_check(cache, SURFACES[sname], s),

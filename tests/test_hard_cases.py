@@ -14,8 +14,8 @@ import numpy as np
 import pytest
 
 from roughcontact import SpectralMoments, ellipse
-from roughcontact import asperity as asp
 from roughcontact import reference as R
+from roughcontact.closures import resolve_material
 from roughcontact.contact import _theta_nodes, elastic_contact
 from roughcontact.elastoplastic import ElastoPlasticCurves, elastoplastic_contact, reference_integrals
 from roughcontact.polar import PolarGeometry
@@ -36,7 +36,8 @@ QUANTITIES = ("area_fraction", "pressure", "stiffness")
 
 
 def material(psi, surface):
-    return asp.AsperityMaterial(E_STAR, asp.yield_strength_for_plasticity_index(psi, surface, E_STAR))
+    """The closure of Figs 5–8 (ψ and E* prescribed, Y derived)."""
+    return resolve_material(surface, E_star=E_STAR, psi=psi)
 
 
 def _finite_positive_decreasing(curves, fields=QUANTITIES):
