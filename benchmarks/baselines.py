@@ -25,8 +25,9 @@ import math
 
 import numpy as np
 
-from roughcontact import asperity, ellipse
-from roughcontact.surface import SpectralMoments
+from roughcontact import asperity
+from roughcontact.asperity import ellipse
+from roughcontact.statistics import SpectralMoments
 
 TRUNCATION = 25.0
 

@@ -28,7 +28,10 @@ PROBE = textwrap.dedent(
     import numpy as np
     from roughcontact import SpectralMoments
     from roughcontact.contact import elastic_contact
-    from roughcontact.elastoplastic import elastoplastic_contact
+    try:  # the package layout since issue 9; older revisions have a flat module
+        from roughcontact.contact import elastoplastic_contact
+    except ImportError:
+        from roughcontact.contact.elastoplastic import elastoplastic_contact
     from roughcontact.asperity import AsperityMaterial, yield_strength_for_plasticity_index
     import roughcontact
     points = json.loads(sys.argv[1]); repeat = int(sys.argv[2])

@@ -49,7 +49,7 @@ _COMPILE_PROBE = textwrap.dedent(
     t0 = time.perf_counter()
     from roughcontact import SpectralMoments
     from roughcontact.contact import elastic_contact
-    from roughcontact.elastoplastic import elastoplastic_contact
+    from roughcontact.contact import elastoplastic_contact
     from roughcontact.asperity import AsperityMaterial, yield_strength_for_plasticity_index
     t_import = time.perf_counter() - t0
     surf = SpectralMoments(0.0625, 8e-5, 8e-4, 1.04e-6, 1.04e-4)

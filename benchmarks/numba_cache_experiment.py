@@ -23,7 +23,7 @@ same time: each reads the index, picks the first free data-file number and rewri
 index, so one entry can be lost (a recompile) or, worse, two keys can be given the same data
 file name and one key's index entry end up naming the other key's code. Hence the rules in
 docs/performance.md: one signature per kernel (no read-only arrays, C-contiguous float64 and
-int64 only; tests/test_quadrature.py checks it), and no kernel calls a kernel of another file
+int64 only; tests/integrals/test_kernels.py checks it), and no kernel calls a kernel of another file
 (the cache is invalidated per defining file only).
 """
 
@@ -50,9 +50,9 @@ WORKER = textwrap.dedent(
     import numpy as np
     from roughcontact import SpectralMoments
     from roughcontact.contact import elastic_contact
-    from roughcontact.elastoplastic import elastoplastic_contact
+    from roughcontact.contact import elastoplastic_contact
     from roughcontact.asperity import AsperityMaterial, yield_strength_for_plasticity_index
-    import roughcontact.quadrature as Q
+    import roughcontact.integrals.kernels as Q
     t_import = time.perf_counter() - t0
     surf = SpectralMoments(0.0625, 8e-5, 8e-4, 1.04e-6, 1.04e-4)
     mat = AsperityMaterial(1.14e5, yield_strength_for_plasticity_index(1.0, surf, 1.14e5))

@@ -1,7 +1,7 @@
 """Reference values of the speed-against-error benchmark, cached in one JSON file so re-runs do
 not recompute them.
 
-* elastic: the mpmath integrator (roughcontact.reference, dps = 20, ≥ 15 correct digits);
+* elastic: the mpmath integrator (roughcontact.integrals.reference, dps = 20, ≥ 15 correct digits);
 * elasto-plastic: there is no mpmath reference — a 3-D mpmath quadrature of the piecewise
   integrand would need ~1e8 evaluations per point — so the reference is the scipy slow twin
   elastoplastic.reference_integrals at rtol 1e-10. Its limits are checked against mpmath:
@@ -24,12 +24,12 @@ import mpmath as mp
 import numpy as np
 
 from roughcontact import SpectralMoments
-from roughcontact import reference as R
 from roughcontact.asperity import AsperityMaterial
-from roughcontact.closures import resolve_material
-from roughcontact.contact import elastic_contact
-from roughcontact.elastoplastic import reference_integrals
-from roughcontact.polar import ElasticPrefactors, PolarGeometry
+from roughcontact.contact import elastic_contact, resolve_material
+from roughcontact.integrals import reference as R
+from roughcontact.integrals import reference_functions as RF
+from roughcontact.integrals.polar import ElasticPrefactors, PolarGeometry
+from roughcontact.integrals.reference_elastoplastic import reference_integrals
 
 E_STAR = 1.14e5  # N/mm², the paper's tables and figures
 
@@ -115,9 +115,9 @@ def plastic_limit_area(cache: ReferenceCache, surface: SpectralMoments, s: float
             def integrand(theta):
                 th = float(theta)
                 lam2 = float(geom.lambda_squared(th))
-                e1 = R.exact_e1(lam2)
+                e1 = RF.exact_e1(lam2)
                 with mp.extradps(15):
-                    _, E, _, B = R._carlson(e1 * e1)
+                    _, E, _, B = RF._carlson(e1 * e1)
                     f3 = E / (2 * e1 * B)  # (59) rearranged, ellipse.f3
                 cs = mp.cos(theta) * mp.sin(theta)
                 inner, _ = R.inner_integral("area", float(geom.g(th)), l, dps=dps)

@@ -154,7 +154,7 @@ def write_netcdf(results: dict, path: Path) -> None:
 def figure(results: dict, path) -> None:
     """Error (log) against time per separation (log), one curve per method family, per
     quantity; each marker one setting: median time over the points, worst error over them."""
-    from roughcontact.plots import new_figure, save
+    from roughcontact.paper.plots import new_figure, save
 
     styles = {
         "production": dict(color="#1b4f72", marker="o", ls="-"),

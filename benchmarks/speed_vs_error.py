@@ -47,8 +47,8 @@ import report  # noqa: E402
 
 from roughcontact import SpectralMoments  # noqa: E402
 from roughcontact.contact import elastic_contact  # noqa: E402
-from roughcontact.elastoplastic import elastoplastic_contact  # noqa: E402
-from roughcontact.quadrature import QuadratureSettings as QS  # noqa: E402
+from roughcontact.contact import elastoplastic_contact  # noqa: E402
+from roughcontact.integrals.rules import QuadratureSettings as QS  # noqa: E402
 
 SURFACES = {
     "table1": SpectralMoments(0.0625, 8e-5, 8e-4, 1.04e-6, 1.04e-4),

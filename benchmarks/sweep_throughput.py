@@ -4,7 +4,7 @@
     .venv/bin/python benchmarks/sweep_throughput.py [--m00 50] [--psi 50] [--s 400]
         [--accuracy plot] [--json results/benchmarks/sweep_throughput/results.json]
 
-The sweep runs through roughcontact.sweep.run_sweep (one elastoplastic_contact call per
+The sweep runs through roughcontact.contact.sweep.run_sweep (one elastoplastic_contact call per
 (m00, ψ) with all s, the elastic model off), the Table 1 moments with m00 on a log grid
 0.02 … 1 µm² (α = 3.2 … 162; μ > 0 needs m00 > 0.0123), ψ on a log grid 0.05 … 50 (Y from ψ
 at E* = 1.14e5 N/mm²), s ∈ [−1, 6]. The full 10⁶-point sweep (50 × 50 × 400) takes hours
@@ -31,7 +31,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import machine  # noqa: E402
 
-from roughcontact import sweep  # noqa: E402
+from roughcontact.contact import sweep  # noqa: E402
 
 FULL = (50, 50, 400)
 GOAL_SECONDS = 60.0
@@ -75,7 +75,7 @@ def markdown(r: dict, info: dict) -> str:
     measured = r["points"] == r["full_points"]
     lines = [
         f"m00 × ψ × s = {' × '.join(map(str, r['grid']))} = {r['points']:,} points through "
-        f"`roughcontact.sweep.run_sweep` (preset \"{r['accuracy']}\", elastic model off), "
+        f"`roughcontact.contact.sweep.run_sweep` (preset \"{r['accuracy']}\", elastic model off), "
         f"{info['cores']} cores ({info['numba_threads']} numba threads): wall {r['wall_seconds']:.1f} s "
         f"(CPU {r['cpu_seconds']:.1f} s), {r['seconds_per_point'] * 1e3:.2f} ms per point, peak RSS "
         f"{r['peak_rss_mib']:.0f} MiB, load average {r['loadavg_before']} → {r['loadavg_after']}.",

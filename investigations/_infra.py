@@ -4,10 +4,10 @@ import numpy as np
 import yaml
 from pathlib import Path
 from scipy.special import pbdv, gamma
-from roughcontact.surface import SpectralMoments
-from roughcontact.polar import PolarGeometry, ElasticPrefactors
-from roughcontact.quadrature import theta_rule, settings_for, TanhSinh
-from roughcontact import ellipse
+from roughcontact.statistics import SpectralMoments
+from roughcontact.integrals.polar import PolarGeometry, ElasticPrefactors
+from roughcontact.integrals.rules import theta_rule, settings_for, TanhSinh
+from roughcontact.asperity import ellipse
 
 ROOT = Path(__file__).resolve().parents[1]
 E_STAR = 1.14e5
@@ -84,7 +84,7 @@ def polar_integral_g(g, wvals, l_values, r_pow, nu, rmax=16.0, r_shift=None):
 
 def theta_rule_on(a, b, breaks=(), level=5):
     br = [x for x in breaks if a < x < b]
-    from roughcontact.quadrature import QuadratureSettings
+    from roughcontact.integrals.rules import QuadratureSettings
     y, w = TanhSinh(level).nodes_weights
     edges = np.unique(np.concatenate(([a], br, [b])))
     nodes, weights = [], []

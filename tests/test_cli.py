@@ -119,12 +119,13 @@ def test_elastic_text_table(capsys):
 
 
 def test_choices_match_library():
-    from roughcontact import closures, contact, elastoplastic, quadrature
+    from roughcontact.contact import closures, elastic, elastoplastic
+    from roughcontact.integrals import rules
 
-    assert cli.MODELS == contact.MODELS
-    assert cli.HERTZ == contact.HERTZ == elastoplastic.HERTZ
-    assert cli.METHODS == contact.METHODS == elastoplastic.METHODS
-    assert set(cli.ACCURACIES) == set(quadrature.PRESETS) == set(quadrature.ELASTOPLASTIC_PRESETS)
+    assert cli.MODELS == elastic.MODELS
+    assert cli.HERTZ == elastic.HERTZ == elastoplastic.HERTZ
+    assert cli.METHODS == elastic.METHODS == elastoplastic.METHODS
+    assert set(cli.ACCURACIES) == set(rules.PRESETS) == set(rules.ELASTOPLASTIC_PRESETS)
     assert cli.CLOSURES == tuple(closures.CLOSURES)
     assert cli.EP_DEFAULTS == closures.DEFAULTS
 
@@ -138,8 +139,8 @@ EP = ["elastoplastic", *MOMENT_ARGS, "--E-star", E_STAR]
 def test_elastoplastic_json_matches_library(capsys):
     """--psi: closure yield-from-psi (psi is kept); the numbers are the library's."""
     from roughcontact import SpectralMoments
-    from roughcontact.closures import resolve_material
-    from roughcontact.elastoplastic import elastoplastic_contact
+    from roughcontact.contact.closures import resolve_material
+    from roughcontact.contact.elastoplastic import elastoplastic_contact
 
     s = ["0.0", "1.0", "2.5"]
     d = run_json(capsys, *EP, "--psi", "0.5", "--s", *s, "--accuracy", "plot")
@@ -304,7 +305,7 @@ def _table3_rows():
 
     table = yaml.safe_load((Path(__file__).parents[1] / "config" / "paper_values.yaml").read_text())["table3"]
     columns = [table["columns"][c]["kn_over_kt"] for c in table["columns"]]  # nu = 0, 1/4, 1/2
-    # reading of the first column: "10.E-03" -> B^2/A^2 = 1e-3 (see tests/test_tangential.py)
+    # reading of the first column: "10.E-03" -> B^2/A^2 = 1e-3 (see tests/interface/test_tangential.py)
     return [(10.0 ** int(label.split("E")[1]), [col[i] for col in columns]) for i, label in enumerate(table["rows"])]
 
 

@@ -176,7 +176,8 @@ def test_fig4_scene_end_to_end_then_nothing_to_do(tmp_path):
               "results/verify/fig4.checks.csv", "logs/curves/fig4.log", "logs/figure/fig4.log",
               "results/benchmarks/curves/fig4.tsv"):
         assert (clone / f).is_file(), f
-    from roughcontact import io, verify
+    from roughcontact import io
+    from roughcontact.paper import verify
 
     ds = io.read_netcdf(clone / "results/curves/fig4.nc")
     assert ds.sizes["e"] == CONFIG["scenes"]["fig4"]["e"]["num"]
@@ -225,7 +226,7 @@ def test_sweep_dispatched_through_generic_cluster_executor(tmp_path):
     import numpy as np
 
     from roughcontact import io
-    from roughcontact.sweep import run_sweep, spec_from_config
+    from roughcontact.contact.sweep import run_sweep, spec_from_config
 
     clone = _clone_with_tiny_sweep(tmp_path)
     env_path = f"{Path(sys.executable).parent}:{__import__('os').environ.get('PATH', '')}"

@@ -6,7 +6,7 @@ for Finite Element 3D-Contact Analysis", Arch. Comput. Methods Eng. 16:399-424.
 
 from importlib.metadata import PackageNotFoundError, version as _version
 
-from .surface import SpectralMoments, gaussian_bearing_area
+from .statistics import SpectralMoments, gaussian_bearing_area
 
 try:
     __version__ = _version("roughcontact")

@@ -35,7 +35,7 @@ import sys
 from typing import Any, Callable, Sequence
 
 from . import __version__
-from .surface import SpectralMoments
+from .statistics import SpectralMoments
 
 __all__ = ["main", "build_parser", "CLIError"]
 
@@ -73,7 +73,7 @@ MODELS = ("bgk", "gw")
 HERTZ = ("exact", "paper")
 METHODS = ("production", "reference")
 ACCURACIES = ("table", "plot")
-# roughcontact.closures.CLOSURES / DEFAULTS, likewise repeated (and checked by the tests)
+# roughcontact.contact.closures.CLOSURES / DEFAULTS, likewise repeated (and checked by the tests)
 CLOSURES = ("material", "yield-from-psi", "paper-literal")
 EP_DEFAULTS = {"yield_coefficient": 1.62, "c_h": 0.967, "wp_over_wc": 45.0}
 
@@ -194,7 +194,7 @@ def _add_elastoplastic(sub, parents) -> None:
         description="Elasto-plastic contact (sections 5-7: Hertz, ZMC/Jeng-Wang transition, "
         "CEB/Horng plastic) with a rigid flat per unit nominal area at s = h/sqrt(m00). "
         "With --yield-strength the material is physical and psi is an output; with --psi the "
-        "closure yield-from-psi derives Y from psi at fixed E* (docs: roughcontact.closures).",
+        "closure yield-from-psi derives Y from psi at fixed E* (docs: roughcontact.contact.closures).",
     )
     p.add_argument("--psi", type=_real, metavar="P", help="plasticity index psi (prescribed)")
     p.add_argument("--yield-strength", dest="Y", type=_real, metavar="Y",
@@ -273,8 +273,8 @@ def _run_elastic(args) -> dict[str, Any]:
 
 
 def _run_elastoplastic(args) -> dict[str, Any]:
-    from .closures import default_closure, resolve_material
-    from .elastoplastic import elastoplastic_contact
+    from .contact import elastoplastic_contact
+    from .contact.closures import default_closure, resolve_material
 
     surface = _surface_from(args)
     material = resolve_material(
@@ -307,7 +307,7 @@ def _run_elastoplastic(args) -> dict[str, Any]:
 
 
 def _run_mindlin(args) -> dict[str, Any]:
-    from .tangential import kn_over_kt
+    from .interface.tangential import kn_over_kt
 
     ratio = kn_over_kt([float(r) for r in args.b2_over_a2], args.nu)
     return {

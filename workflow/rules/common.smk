@@ -37,22 +37,29 @@ def _alternation(names):
 
 
 # Library modules whose code determines the numbers: editing one re-runs the computations
-# that use it (Snakemake's mtime trigger). Reporting modules (io, plots, verify, cli) are
-# excluded so that restyling a figure never re-runs the mpmath reference.
-_NOT_PHYSICS = {"io.py", "plots.py", "verify.py", "cli.py", "__main__.py"}
-PHYSICS_SOURCES = sorted(
-    str(p)
-    for p in (REPO / "src" / "roughcontact").glob("*.py")
-    if p.name not in _NOT_PHYSICS
+# that use it (Snakemake's mtime trigger). The layers below the FE engine, plus the scene
+# definitions of paper/; the reports (paper/claims, verify, report, plots; io) are the inputs
+# of the report rules only, so restyling a figure or rewording a claim never re-runs the
+# mpmath reference.
+LIB = REPO / "src" / "roughcontact"
+
+
+def library_sources(*parts):
+    """The .py files of the named packages (folders) and modules of src/roughcontact."""
+    out = []
+    for part in parts:
+        path = LIB / part
+        out += sorted(path.rglob("*.py")) if path.is_dir() else [path]
+    return [str(p) for p in out]
+
+
+PHYSICS_SOURCES = library_sources(
+    "validation.py", "statistics", "asperity", "integrals", "contact", "interface", "paper/scenes.py"
 )
 #: stamp of the numba_warmup job: the rules that call the numba kernels take it as input, so
 #: that a cold cache is compiled once, not once per parallel job (docs/performance.md).
 KERNELS_WARM = "results/numba/warm.stamp"
-REPORT_SOURCES = [
-    str(REPO / "src" / "roughcontact" / name)
-    for name in ("verify.py", "plots.py", "io.py")
-    if (REPO / "src" / "roughcontact" / name).exists()
-]
+REPORT_SOURCES = library_sources("paper/claims.py", "paper/verify.py", "paper/report.py", "paper/plots.py", "io.py")
 
 
 def scene_targets():
@@ -133,8 +140,8 @@ def scene_provenance(scene):
 
 
 def sweep_parts(name):
-    """The part files of a sweep: one Snakemake job per part (roughcontact.sweep.split)."""
-    from roughcontact.sweep import spec_from_config, split
+    """The part files of a sweep: one Snakemake job per part (roughcontact.contact.sweep.split)."""
+    from roughcontact.contact.sweep import spec_from_config, split
 
     cfg = SWEEPS[name]
     n = len(split(spec_from_config(cfg, config["units"]), cfg["split"]["axis"], cfg["split"]["jobs"]))

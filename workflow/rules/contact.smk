@@ -20,7 +20,7 @@ rule numba_warmup:
     params:
         py=sys.executable,
     shell:
-        "{params.py} -c 'from roughcontact.quadrature import warm_up; warm_up()' > {log} 2>&1"
+        "{params.py} -c 'from roughcontact.warmup import warm_up; warm_up()' > {log} 2>&1"
 
 
 rule reference:

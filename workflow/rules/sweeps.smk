@@ -4,7 +4,7 @@
 
 
 rule sweep_part:
-    """One part of a sweep (roughcontact.sweep.split): the elasto-plastic model over its grid."""
+    """One part of a sweep (roughcontact.contact.sweep.split): the elasto-plastic model over its grid."""
     input:
         lib=PHYSICS_SOURCES,
         kernels=KERNELS_WARM,

@@ -1,11 +1,12 @@
-"""Elasto-plastic curves of one scene (rule curves_elastoplastic): call roughcontact.scenes with
+"""Elasto-plastic curves of one scene (rule curves_elastoplastic): call roughcontact.paper.scenes with
 exactly what the scene declares, write netCDF with provenance."""
 
 import time
 
 import numpy as np
 
-from roughcontact import io, scenes
+from roughcontact import io
+from roughcontact.paper import scenes
 
 
 def _grid(g):

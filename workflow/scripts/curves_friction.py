@@ -1,9 +1,10 @@
-"""Material points of the interface friction law (rule curves_friction): call roughcontact.scenes
+"""Material points of the interface friction law (rule curves_friction): call roughcontact.paper.scenes
 with what the scene declares, write netCDF with provenance."""
 
 import time
 
-from roughcontact import io, scenes
+from roughcontact import io
+from roughcontact.paper import scenes
 
 
 def run(scene, cfg, surface, units, provenance, output, log):

@@ -4,7 +4,7 @@ import numpy as np
 import xarray as xr
 
 from roughcontact import io
-from roughcontact.ellipse import fig4_curves
+from roughcontact.asperity.ellipse import fig4_curves
 
 
 def run(scene, scene_config, provenance, output, log):

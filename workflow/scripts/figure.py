@@ -7,7 +7,8 @@ from pathlib import Path
 import numpy as np
 import yaml
 
-from roughcontact import claims, io, plots, verify
+from roughcontact import io
+from roughcontact.paper import claims, plots, verify
 
 
 def _csv(header, columns):

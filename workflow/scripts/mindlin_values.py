@@ -1,11 +1,11 @@
-"""k_N/k_T of one Table-3 column (rule mindlin_values): roughcontact.tangential at the scene's
+"""k_N/k_T of one Table-3 column (rule mindlin_values): roughcontact.interface.tangential at the scene's
 reading of the printed rows, written as netCDF with provenance."""
 
 import numpy as np
 import xarray as xr
 
 from roughcontact import io
-from roughcontact.tangential import kn_over_kt
+from roughcontact.interface.tangential import kn_over_kt
 
 
 def run(scene, column, b2_over_a2, nu, output, log):

@@ -3,7 +3,8 @@ numerics_elastoplastic); netCDF with provenance."""
 
 import time
 
-from roughcontact import io, scenes
+from roughcontact import io
+from roughcontact.paper import scenes
 
 
 def run(scene, cfg, surfaces, output, log):

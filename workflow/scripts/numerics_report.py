@@ -1,6 +1,7 @@
 """Numerics rows of a numerics scene (rule numerics_report): checks CSV and the data as CSV."""
 
-from roughcontact import claims, io, verify
+from roughcontact import io
+from roughcontact.paper import claims, verify
 
 
 def run(scene, cfg, data, out, log):

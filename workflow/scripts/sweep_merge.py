@@ -1,7 +1,7 @@
 """Join the parts of a sweep (rule sweep_merge) into results/sweeps/<name>.nc."""
 
 from roughcontact import io
-from roughcontact.sweep import combine
+from roughcontact.contact.sweep import combine
 
 
 def run(name, cfg, parts, output, log):

@@ -4,7 +4,7 @@ part, write netCDF with provenance. Progress goes to the rule's log."""
 import time
 
 from roughcontact import io
-from roughcontact.sweep import run_sweep, spec_from_config, split
+from roughcontact.contact.sweep import run_sweep, spec_from_config, split
 
 
 def run(name, part, cfg, units, output, log):

@@ -5,7 +5,8 @@ from pathlib import Path
 
 import yaml
 
-from roughcontact import io, verify
+from roughcontact import io
+from roughcontact.paper import report, verify
 
 
 def _values(paths):
@@ -50,8 +51,8 @@ def run(scene, scene_config, models, numerics_rtol, reference_dps, production, r
             "commit": str(provenance.get("git_commit", "unknown"))[:12],
             "reference dps": reference_dps if ref else "none",
         }
-        io.write_text(out["md"], verify.render_table_markdown(scene_config["title"], checks, paper_table, models, provenance=shown))
-        io.write_text(out["csv"], verify.render_table_csv(checks, models))
+        io.write_text(out["md"], report.render_table_markdown(scene_config["title"], checks, paper_table, models, provenance=shown))
+        io.write_text(out["csv"], report.render_table_csv(checks, models))
         io.write_text(out["checks"], verify.checks_to_csv(checks))
 
 

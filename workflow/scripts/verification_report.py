@@ -5,7 +5,8 @@ from pathlib import Path
 
 import yaml
 
-from roughcontact import __version__, io, verify
+from roughcontact import __version__, io
+from roughcontact.paper import report, verify
 
 
 def _speed_section(path):
@@ -25,7 +26,7 @@ def run(checks_files, speed, expected, errata, scene_titles, reference_dps, out,
         for path in checks_files:
             checks += verify.checks_from_csv(Path(path).read_text())
         checks = verify.apply_expectations(checks, yaml.safe_load(Path(expected).read_text()))
-        errata_list = verify.parse_errata(Path(errata[0]).read_text()) if errata else []
+        errata_list = report.parse_errata(Path(errata[0]).read_text()) if errata else []
         provenance = {
             "roughcontact": __version__,
             "commit": io.git_commit()[:12],
@@ -34,7 +35,7 @@ def run(checks_files, speed, expected, errata, scene_titles, reference_dps, out,
         summary = verify.summarize(checks)
         summary["provenance"] = provenance
         logger.info("summary: %s", json.dumps({k: v for k, v in summary.items() if k != "by_kind"}))
-        io.write_text(out["md"], verify.render_verification_markdown(
+        io.write_text(out["md"], report.render_verification_markdown(
             checks, errata=errata_list, provenance=provenance, scene_titles=scene_titles,
             sections={"Speed against error": _speed_section(speed)}))
         io.write_text(out["csv"], verify.checks_to_csv(checks))

@@ -1,0 +1,286 @@
+"""Elasto-plastic contact of a rough surface with a rigid flat, per unit nominal area.
+
+Sections 5–7 of Buczkowski & Kleiber (2009), eqs. (78)–(85), with the corrections of
+docs/errata.md (E12–E17). Public entry point: :func:`elastoplastic_contact`.
+
+The integrals
+-------------
+In the polar variables of docs/derivation.md (θ, r, t; ω = t √(m00 μ) the interference,
+κ_m = r c(θ), summit measure cos θ sin θ · r³ e^{−r²/2} φ(t + l − r g(θ)) dt dr dθ):
+
+    A/A0 = D_sum ∫∫∫ A_i(ω, κ_m, e) · (measure)          (78)–(81)
+    W/A0 = D_sum ∫∫∫ W_i(ω, κ_m, e) · (measure)          (82)–(85)
+    K/A0 = D_sum ∫∫∫ dW_i/dω · (measure) [+ jump term]   (replaces (88), errata E17)
+
+with the per-asperity law A_i, W_i, dW_i/dω of :func:`roughcontact.asperity.respond`
+(elastic ω ≤ ω_c, elasto-plastic ω_c < ω < ω_p, plastic ω ≥ ω_p). The parts A^e, A^ep, A^p
+(and W^e, W^ep, W^p) are the same integrals restricted to one regime — the t-ranges
+[0, t_c], (t_c, t_p), [t_p, ∞) of (79)–(81), (83)–(85). The ellipse factors f1, f2, f3 and
+K(e)E(e) depend on θ only, so ω_c = K E (K_Y Y/E*)²/κ_m (65) is, in t units,
+t_c(θ, r) = tc1(θ)/r with tc1 = ω_c(θ, κ_m = c(θ))/√(m00 μ) computed at the θ-nodes by
+:func:`roughcontact.asperity.critical_interference`; t_p = (ω_p/ω_c) t_c.
+
+K = −dW/dh: W(h) = D_sum ∫ W_i(ξ1 − h) p_sum over ξ1 > h; the lower limit contributes
+W_i(0) = 0, so −dW/dh = D_sum ∫ dW_i/dω p_sum + (load jumps). With the default continuous
+K_v = K_Y Y/H the per-asperity load is continuous and the jump term vanishes. With the
+paper's K_v = 0.454 + 0.41ν (``AsperityMaterial.with_paper_K_v``) the load jumps at ω_c by
+J = A_i(ω_c)·(2/3)(K_v H − K_Y Y) (errata E15), and −dW/dh gains
+(D_sum/√(m00 μ)) ∫∫ J φ(t_c + l − r g) cs r³ e^{−r²/2} dr dθ, the density of summits sitting
+exactly at first yield times the jump; it is included in ``stiffness`` (and reported
+separately as ``stiffness_jump``), so ``stiffness`` is −dW/dh in both cases.
+
+Integrators
+-----------
+``method="production"``: numba (integrals.kernels._ep_pairs): θ-nodes of the elastic integrator
+(split at the axis turn θ*, the peak of g and the kinks of the Hertz option) carrying f1, f2,
+f3, c, g, tc1; r on the partition of the elastic kernel plus the r where t_c and t_p cross
+the bulk of the t-mass (and r_c/2, 2 r_c), Gauss–Legendre on each piece. Per r-node the
+t-integral is closed-form where the Gaussian window of φ(t − a), a = r g − l, lies in one
+regime (elastic: J_{1/2}, J_1, J_{3/2}(a); plastic: J_0, J_1), otherwise the elastic piece
+[lo, t_c] (in √t) and the elasto-plastic piece [t_c, t_p] (in ln t near 0) are integrated by
+Gauss–Legendre and the plastic tail beyond t_p is closed-form (levels:
+integrals.rules.ELASTOPLASTIC_PRESETS). Parallel over (s, θ-node) pairs.
+``method="reference"``: the slow twin
+(:func:`roughcontact.integrals.reference_elastoplastic.reference_integrals`) — scipy
+``integrate.cubature`` (adaptive Gauss–Kronrod 21) over θ (polynomially mapped to flatten
+the end-point singularities) and, nested, over r; the inner t-integral by Gauss–Legendre
+in u = √t on the regime pieces, with the law and its regime taken from asperity.respond
+itself. Seconds per separation; used by the tests.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from dataclasses import dataclass, field
+from typing import ClassVar
+
+import numpy as np
+
+from ..asperity import AsperityMaterial, critical_interference, ellipse, plasticity_index
+from ..integrals.polar import PolarGeometry
+from ..integrals.production import polar_elastoplastic_integrals
+from ..integrals.reference_elastoplastic import reference_integrals
+from ..integrals.rules import elastoplastic_settings_for, theta_rule
+from ..statistics.surface import SpectralMoments
+from ..validation import choice, instance, separations
+
+__all__ = ["ElastoPlasticCurves", "elastoplastic_contact"]
+
+HERTZ = ("exact", "paper")
+METHODS = ("production", "reference")
+_PARTS = ("elastic", "elastoplastic", "plastic")
+
+
+def _units(length="L", stress="unit of E*"):
+    u = {
+        "s": "1 (h/sqrt(m00))",
+        "area_fraction": "1 (A/A0)",
+        "pressure": f"{stress} (W/A0)",
+        "stiffness": f"{stress} per {length} (K/A0 = -d(W/A0)/dh)",
+        "stiffness_jump": f"{stress} per {length} (load-jump part of K/A0)",
+    }
+    for p in _PARTS:
+        u[f"{p}_area_fraction"] = f"1 (A^{p}/A0)"
+        u[f"{p}_pressure"] = f"{stress} (W^{p}/A0)"
+    return u
+
+
+@dataclass(frozen=True)
+class ElastoPlasticCurves:
+    """Elasto-plastic contact per unit nominal area at the separations ``s`` = h/√m00.
+
+    area_fraction A/A0 [–] (78); pressure W/A0 [unit of E*] (82); stiffness K/A0 = −d(W/A0)/dh
+    [unit of E* per length unit of the moments]; the regime parts elastic_*, elastoplastic_*,
+    plastic_* (79)–(81), (83)–(85) sum to the totals; stiffness_jump is the part of K due to
+    a load jump at ω_c (0 unless K_v ≠ K_Y Y/H). ``psi`` is asperity.plasticity_index.
+    """
+
+    s: np.ndarray
+    area_fraction: np.ndarray
+    pressure: np.ndarray
+    stiffness: np.ndarray
+    elastic_area_fraction: np.ndarray
+    elastoplastic_area_fraction: np.ndarray
+    plastic_area_fraction: np.ndarray
+    elastic_pressure: np.ndarray
+    elastoplastic_pressure: np.ndarray
+    plastic_pressure: np.ndarray
+    stiffness_jump: np.ndarray
+    hertz: str
+    method: str
+    material: AsperityMaterial
+    surface: SpectralMoments
+    psi: float
+    units: dict = field(default_factory=_units)
+
+    @property
+    def mean_real_pressure(self) -> np.ndarray:
+        """W/A [unit of E*] (nan where A = 0)."""
+        with np.errstate(invalid="ignore", divide="ignore"):
+            return self.pressure / self.area_fraction
+
+    @property
+    def plastic_area_ratio(self) -> np.ndarray:
+        """A^p/A (Fig. 5's ordinate as captioned)."""
+        with np.errstate(invalid="ignore", divide="ignore"):
+            return self.plastic_area_fraction / self.area_fraction
+
+    @property
+    def yielded_area_ratio(self) -> np.ndarray:
+        """(A^ep + A^p)/A: the part of the real area past first yield."""
+        with np.errstate(invalid="ignore", divide="ignore"):
+            return (self.elastoplastic_area_fraction + self.plastic_area_fraction) / self.area_fraction
+
+    FIELDS: ClassVar[tuple[str, ...]] = (
+        "area_fraction",
+        "pressure",
+        "stiffness",
+        "elastic_area_fraction",
+        "elastoplastic_area_fraction",
+        "plastic_area_fraction",
+        "elastic_pressure",
+        "elastoplastic_pressure",
+        "plastic_pressure",
+        "stiffness_jump",
+    )
+
+    def to_dataset(self):
+        """An xarray.Dataset over ``s`` with units, material and surface in the attributes."""
+        import xarray as xr
+
+        ds = xr.Dataset(
+            {name: ("s", getattr(self, name), {"units": self.units[name]}) for name in self.FIELDS},
+            coords={"s": ("s", self.s, {"units": self.units["s"], "long_name": "h/sqrt(m00)"})},
+        )
+        m = self.material
+        ds.attrs.update(
+            model="bgk-elastoplastic",
+            hertz=self.hertz,
+            method=self.method,
+            E_star=m.E_star,
+            Y=m.Y,
+            H=m.H,
+            yield_coefficient=m.yield_coefficient,
+            c_h=m.c_h,
+            wp_over_wc=m.wp_over_wc,
+            K_v=m.K_v,
+            psi=self.psi,
+            **self.surface.as_dict(),
+        )
+        return ds
+
+
+# ---------------------------------------------------------------------------------------
+# validation
+# ---------------------------------------------------------------------------------------
+def _check_inputs(surface, s, material, hertz, method) -> np.ndarray:
+    instance("surface", surface, SpectralMoments)
+    instance("material", material, AsperityMaterial)
+    choice("hertz", hertz, HERTZ)
+    choice("method", method, METHODS)
+    return separations(s)
+
+
+def _material_constants(material: AsperityMaterial):
+    """(E*, ω_p/ω_c, c_h H, H(c_h − (2/3)K_v), (2/3) K_v H, with_jump) for the kernels."""
+    m = material
+    with_jump = m.has_load_jump
+    return (
+        m.E_star,
+        m.wp_over_wc,
+        m.c_h * m.H,
+        m.H * (m.c_h - (2.0 / 3.0) * m.K_v),
+        (2.0 / 3.0) * m.K_v * m.H,
+        with_jump,
+    )
+
+
+# ---------------------------------------------------------------------------------------
+# θ-node data (as contact._theta_nodes, plus f3 and the critical interference)
+# ---------------------------------------------------------------------------------------
+@functools.lru_cache(maxsize=64)
+def _theta_nodes(surface: SpectralMoments, hertz: str, accuracy, material: AsperityMaterial):
+    """θ-weights (× cos θ sin θ) and per-node g, c, f1, f2, f3, tc1 (the same nodes as
+    contact._theta_nodes). tc1 = ω_c(θ, κ_m = c(θ))/√(m00 μ) by asperity.critical_interference."""
+    settings = elastoplastic_settings_for(accuracy)
+    geom = PolarGeometry(surface)
+    theta, w = theta_rule(geom.theta_breaks(hertz), settings)
+    lam = np.sqrt(geom.lambda_squared(theta))
+    factors = ellipse.hertz_factors(lam, hertz)
+    c = geom.c(theta)
+    sigma = math.sqrt(surface.m00 * surface.mu)
+    wc1 = np.asarray(critical_interference(c, factors, material, hertz=hertz), dtype=float)  # eq. (65)
+    nodes = dict(
+        g=geom.g(theta),
+        c=c,
+        f1=np.asarray(factors.f1, float),
+        f2=np.asarray(factors.f2, float),
+        f3=np.asarray(factors.f3, float),
+        tc1=wc1 / sigma,
+    )
+    return w * np.cos(theta) * np.sin(theta), nodes
+
+
+def _production(surface, l_values, material, hertz, accuracy) -> np.ndarray:
+    """Columns A^e, A^ep, A^p, W^e, W^ep, W^p, K, K_jump per unit nominal area."""
+    w_theta, nodes = _theta_nodes(surface, hertz, accuracy, material)
+    sigma = math.sqrt(surface.m00 * surface.mu)
+    per_node = polar_elastoplastic_integrals(l_values, nodes, sigma, _material_constants(material), accuracy)
+    tot = np.einsum("ijq,j->iq", per_node, w_theta) * surface.summit_density
+    out = tot.copy()
+    out[:, 6] = tot[:, 6] + tot[:, 7]  # K = ∫ dW_i/dω p_sum + jump term
+    return out
+
+
+# ---------------------------------------------------------------------------------------
+# public API
+# ---------------------------------------------------------------------------------------
+def elastoplastic_contact(
+    surface: SpectralMoments,
+    s,
+    material: AsperityMaterial,
+    *,
+    hertz: str = "exact",
+    accuracy="table",
+    method: str = "production",
+) -> ElastoPlasticCurves:
+    """Elasto-plastic contact per unit nominal area at separations ``s`` = h/√m00 (23).
+
+    surface   SpectralMoments (lengths in its unit L; D_sum per L²).
+    material  AsperityMaterial (E*, Y, H, K_Y, c_h, ω_p/ω_c, K_v; stresses in one unit).
+              To prescribe a plasticity index ψ use
+              ``AsperityMaterial(E, asperity.yield_strength_for_plasticity_index(ψ, surface, E))``.
+    hertz     "exact" | "paper" (ellipse factors as in contact.elastic_contact).
+    accuracy  production preset of integrals.rules.ELASTOPLASTIC_PRESETS ("table", "plot") or a
+              QuadratureSettings.
+    method    "production" (numba) or "reference" (the scipy slow twin; seconds per point).
+
+    Returns :class:`ElastoPlasticCurves`: A/A0, W/A0 (unit of E*), K/A0 = −d(W/A0)/dh (unit of
+    E* per L) and the elastic / elasto-plastic / plastic parts of area and load.
+    """
+    s_arr = _check_inputs(surface, s, material, hertz, method)
+    if method == "production":
+        elastoplastic_settings_for(accuracy)  # validates the preset name
+        cols = _production(surface, surface.l_from_s(s_arr), material, hertz, accuracy)
+    else:
+        cols = np.array([reference_integrals(surface, float(x), material, hertz=hertz) for x in s_arr])
+    Ae, Aep, Ap, We, Wep, Wp, K, Kj = (np.asarray(cols[:, q], dtype=float) for q in range(8))
+    return ElastoPlasticCurves(
+        s=s_arr,
+        area_fraction=Ae + Aep + Ap,
+        pressure=We + Wep + Wp,
+        stiffness=K,
+        elastic_area_fraction=Ae,
+        elastoplastic_area_fraction=Aep,
+        plastic_area_fraction=Ap,
+        elastic_pressure=We,
+        elastoplastic_pressure=Wep,
+        plastic_pressure=Wp,
+        stiffness_jump=Kj,
+        hertz=hertz,
+        method=method,
+        material=material,
+        surface=surface,
+        psi=plasticity_index(surface, material),
+    )

@@ -1,0 +1,278 @@
+"""Parameter sweeps of the elasto-plastic contact model as labelled xarray Datasets.
+
+A sweep is the outer product of named parameter axes (any of the five moments, the plasticity
+index ``psi``, the yield strength ``Y``, ``E_star`` and the material constants ``c_h``,
+``wp_over_wc``, ``yield_coefficient``) times a vector of separations ``s`` = h/√m00. For every
+combination the material is fixed by a plasticity-index closure (roughcontact.contact.closures) and
+:func:`roughcontact.contact.elastoplastic.elastoplastic_contact` evaluates A, W, K and their elastic /
+elasto-plastic / plastic parts over all ``s`` in one call; optionally the purely elastic model
+(:func:`roughcontact.contact.elastic_contact`) is added for comparison.
+
+Combinations are validated before anything is computed (every surface must have μ > 0, every
+material must be valid), so a sweep never fails half-way on bad input. Pure library code: no
+file I/O; ``progress`` receives (done, total) after each combination. Splitting a sweep into
+jobs (:func:`split`) and joining the pieces (:func:`combine`) is exact: the pieces are the same
+computations as the whole.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from dataclasses import dataclass, field, replace
+from typing import Callable, Mapping, Sequence
+
+import numpy as np
+
+from ..statistics.surface import SpectralMoments
+from .closures import CLOSURES, DEFAULTS, default_closure, resolve_material
+
+__all__ = [
+    "SweepSpec", "SWEEPABLE", "run_sweep", "split", "combine", "chunk_count", "parameter_units",
+    "axis_values", "spec_from_config",
+]
+
+_MOMENTS = ("m00", "m20", "m02", "m40", "m04")
+_MATERIAL = ("psi", "Y", "E_star", "c_h", "wp_over_wc", "yield_coefficient")
+#: Parameters a sweep axis (or a fixed value) may name.
+SWEEPABLE = _MOMENTS + _MATERIAL
+
+_ELASTIC_FIELDS = ("area_fraction", "pressure", "stiffness")
+
+
+def parameter_units(length: str, stress: str) -> dict[str, str]:
+    """Units of the sweepable parameters (and of H, K_v) for the given length and stress units."""
+    return {
+        "m00": f"{length}^2", "m20": "1", "m02": "1", "m40": f"{length}^-2", "m04": f"{length}^-2",
+        "psi": "1", "Y": stress, "E_star": stress, "c_h": "1", "wp_over_wc": "1",
+        "yield_coefficient": "1", "H": stress, "K_v": "1",
+    }
+
+
+@dataclass(frozen=True)
+class SweepSpec:
+    """What a sweep computes.
+
+    axes     ordered {parameter: values}; the Dataset's dimensions are these, then ``s``.
+    s        separations h/√m00 (1-D, finite).
+    fixed    values of the parameters that are not swept (the moments, E_star, psi or Y, ...).
+    closure  plasticity-index closure name (None: the one psi / Y imply, closures.default_closure).
+    hertz    "exact" | "paper"; accuracy: production preset ("table", "plot").
+    with_elastic  also evaluate the purely elastic model (variables ``elastic_model_*``).
+    units    {"length": ..., "stress": ...} of the inputs (stored as the variables' units).
+    """
+
+    axes: Mapping[str, Sequence[float]]
+    s: Sequence[float]
+    fixed: Mapping[str, float] = field(default_factory=dict)
+    closure: str | None = None
+    hertz: str = "exact"
+    accuracy: str = "plot"
+    with_elastic: bool = True
+    units: Mapping[str, str] = field(default_factory=lambda: {"length": "L", "stress": "unit of E*"})
+
+    def __post_init__(self) -> None:
+        axes = {str(k): np.atleast_1d(np.asarray(v, dtype=float)) for k, v in dict(self.axes).items()}
+        fixed = {str(k): float(v) for k, v in dict(self.fixed).items()}
+        for name in [*axes, *fixed]:
+            if name not in SWEEPABLE:
+                raise ValueError(f"unknown sweep parameter {name!r}; choose from {', '.join(SWEEPABLE)}")
+        both = set(axes) & set(fixed)
+        if both:
+            raise ValueError(f"parameters both swept and fixed: {', '.join(sorted(both))}")
+        for name, v in axes.items():
+            if v.ndim != 1 or v.size == 0 or not np.all(np.isfinite(v)):
+                raise ValueError(f"sweep axis {name!r} must be a non-empty 1-D list of finite numbers")
+            if np.unique(v).size != v.size:
+                raise ValueError(f"sweep axis {name!r} has repeated values")
+        given = set(axes) | set(fixed)
+        missing = [m for m in (*_MOMENTS, "E_star") if m not in given]
+        if missing:
+            raise ValueError(f"sweep needs values for {', '.join(missing)} (as an axis or fixed)")
+        if self.closure is None:
+            # the closure the given psi / Y imply (both given: must be explicit)
+            closure = default_closure(1.0 if "psi" in given else None, 1.0 if "Y" in given else None)
+            object.__setattr__(self, "closure", closure)
+        elif self.closure not in CLOSURES:
+            raise ValueError(f"closure must be one of {', '.join(CLOSURES)}; got {self.closure!r}")
+        s = np.atleast_1d(np.asarray(self.s, dtype=float))
+        if s.ndim != 1 or s.size == 0 or not np.all(np.isfinite(s)):
+            raise ValueError("s must be a non-empty 1-D list of finite separations h/sqrt(m00)")
+        object.__setattr__(self, "axes", axes)
+        object.__setattr__(self, "fixed", fixed)
+        object.__setattr__(self, "s", s)
+
+    @property
+    def shape(self) -> tuple[int, ...]:
+        return tuple(v.size for v in self.axes.values()) + (self.s.size,)
+
+    @property
+    def points(self) -> int:
+        """Number of (parameters, s) points."""
+        return int(np.prod(self.shape))
+
+    def combinations(self):
+        """(index tuple, {parameter: value}) for every combination of the axes, in C order."""
+        names = list(self.axes)
+        for idx in itertools.product(*(range(v.size) for v in self.axes.values())):
+            yield idx, {**self.fixed, **{n: float(self.axes[n][i]) for n, i in zip(names, idx)}}
+
+
+def _surface_and_material(spec: SweepSpec, params: Mapping[str, float]):
+    surface = SpectralMoments(*(params[m] for m in _MOMENTS))
+    material = resolve_material(
+        surface,
+        E_star=params["E_star"],
+        psi=params.get("psi"),
+        Y=params.get("Y"),
+        closure=spec.closure,
+        yield_coefficient=params.get("yield_coefficient", DEFAULTS["yield_coefficient"]),
+        c_h=params.get("c_h", DEFAULTS["c_h"]),
+        wp_over_wc=params.get("wp_over_wc", DEFAULTS["wp_over_wc"]),
+    )
+    return surface, material
+
+
+def _validate(spec: SweepSpec) -> list:
+    """Build every (surface, material) first: a bad combination fails before any integral."""
+    out = []
+    for idx, params in spec.combinations():
+        try:
+            out.append((idx, *_surface_and_material(spec, params)))
+        except (ValueError, TypeError) as exc:
+            raise ValueError(f"sweep combination {params}: {exc}") from None
+    return out
+
+
+def run_sweep(spec: SweepSpec, progress: Callable[[int, int], None] | None = None):
+    """Evaluate the sweep; an ``xarray.Dataset`` over (*axes, s) with units and attributes.
+
+    Variables: the elasto-plastic totals and parts of :class:`ElastoPlasticCurves` (A/A0 [1],
+    W/A0 [stress], K/A0 [stress/length], ...), ``psi`` (the index each material has), ``Y`` and
+    ``H`` of the resolved material, and with ``with_elastic`` the purely elastic model
+    ``elastic_model_area_fraction``, ``elastic_model_pressure``, ``elastic_model_stiffness``.
+    """
+    import xarray as xr
+
+    from .elastic import elastic_contact
+    from .elastoplastic import ElastoPlasticCurves, elastoplastic_contact
+
+    ep_fields = ElastoPlasticCurves.FIELDS
+    jobs = _validate(spec)
+    shape = spec.shape
+    data = {f: np.empty(shape) for f in ep_fields}
+    if spec.with_elastic:
+        data.update({f"elastic_model_{f}": np.empty(shape) for f in _ELASTIC_FIELDS})
+    per_combo = {k: np.empty(shape[:-1]) for k in ("psi", "Y", "H")}
+    elastic_done = {}  # the elastic model depends on (surface, E*) only, not on the material
+    for n, (idx, surface, material) in enumerate(jobs, start=1):
+        ep = elastoplastic_contact(surface, spec.s, material, hertz=spec.hertz, accuracy=spec.accuracy)
+        for f in ep_fields:
+            data[f][idx] = getattr(ep, f)
+        if spec.with_elastic:
+            key = (surface, material.E_star)
+            if key not in elastic_done:
+                elastic_done[key] = elastic_contact(
+                    surface, spec.s, material.E_star, hertz=spec.hertz, accuracy=spec.accuracy
+                )
+            for f in _ELASTIC_FIELDS:
+                data[f"elastic_model_{f}"][idx] = getattr(elastic_done[key], f)
+        per_combo["psi"][idx], per_combo["Y"][idx], per_combo["H"][idx] = ep.psi, material.Y, material.H
+        if progress is not None:
+            progress(n, len(jobs))
+
+    L, S = spec.units["length"], spec.units["stress"]
+    punits = parameter_units(L, S)
+    vunits = {
+        "area_fraction": "1", "pressure": S, "stiffness": f"{S}/{L}", "stiffness_jump": f"{S}/{L}",
+        "elastic_area_fraction": "1", "elastoplastic_area_fraction": "1", "plastic_area_fraction": "1",
+        "elastic_pressure": S, "elastoplastic_pressure": S, "plastic_pressure": S,
+        "elastic_model_area_fraction": "1", "elastic_model_pressure": S, "elastic_model_stiffness": f"{S}/{L}",
+    }
+    long = {
+        "area_fraction": "real contact area fraction A/A0, eq. (78)",
+        "pressure": "nominal pressure W/A0, eq. (82)",
+        "stiffness": "normal stiffness K/A0 = -d(W/A0)/dh (Leibniz form, not (88))",
+        "stiffness_jump": "part of K/A0 due to a load jump at first yield",
+        "elastic_area_fraction": "A^e/A0, eq. (79)",
+        "elastoplastic_area_fraction": "A^ep/A0, eq. (80)",
+        "plastic_area_fraction": "A^p/A0, eq. (81)",
+        "elastic_pressure": "W^e/A0, eq. (83)",
+        "elastoplastic_pressure": "W^ep/A0, eq. (84)",
+        "plastic_pressure": "W^p/A0, eq. (85)",
+        "elastic_model_area_fraction": "A/A0 of the purely elastic model, eq. (52)",
+        "elastic_model_pressure": "W/A0 of the purely elastic model, eq. (53)",
+        "elastic_model_stiffness": "K/A0 of the purely elastic model, eq. (55)",
+    }
+    dims = (*spec.axes, "s")
+    ds = xr.Dataset(
+        {k: (dims, v, {"units": vunits[k], "long_name": long[k]}) for k, v in data.items()},
+        coords={
+            **{n: (n, v, {"units": punits[n]}) for n, v in spec.axes.items()},
+            "s": ("s", spec.s, {"units": "1", "long_name": "separation h/sqrt(m00), eq. (23)"}),
+        },
+    )
+    for k, v in per_combo.items():
+        ds[f"material_{k}"] = (tuple(spec.axes), v, {"units": punits[k], "long_name": f"{k} of the resolved material"})
+    ds.attrs.update(
+        model="bgk-elastoplastic",
+        closure=str(spec.closure),
+        hertz=spec.hertz,
+        accuracy=spec.accuracy,
+        **{f"fixed_{k}": v for k, v in spec.fixed.items()},
+    )
+    return ds
+
+
+def split(spec: SweepSpec, axis: str, chunks: int) -> list[SweepSpec]:
+    """Split ``spec`` along ``axis`` into at most ``chunks`` contiguous pieces (for jobs)."""
+    if axis not in spec.axes:
+        raise ValueError(f"cannot split along {axis!r}: not a sweep axis ({', '.join(spec.axes)})")
+    values = spec.axes[axis]
+    n = max(1, min(int(chunks), values.size))
+    return [replace(spec, axes={**spec.axes, axis: part}) for part in np.array_split(values, n)]
+
+
+def combine(pieces: Sequence, axis: str):
+    """Join the Datasets of :func:`split` pieces back along ``axis`` (in the given order)."""
+    import xarray as xr
+
+    if not pieces:
+        raise ValueError("nothing to combine")
+    return xr.concat(list(pieces), dim=axis, data_vars="all", coords="minimal", compat="override",
+                     combine_attrs="override")
+
+
+def chunk_count(spec: SweepSpec, axis: str, points_per_job: int) -> int:
+    """How many jobs of about ``points_per_job`` points the split along ``axis`` needs."""
+    per_value = spec.points // spec.axes[axis].size
+    return max(1, min(spec.axes[axis].size, math.ceil(spec.points / max(points_per_job, per_value))))
+
+
+def axis_values(axis) -> np.ndarray:
+    """Values of a configured axis: a list, or a grid {start, stop, num, spacing: linear|log}."""
+    if isinstance(axis, Mapping):
+        start, stop, num = float(axis["start"]), float(axis["stop"]), int(axis["num"])
+        spacing = axis.get("spacing", "linear")
+        if spacing == "linear":
+            return np.linspace(start, stop, num)
+        if spacing == "log":
+            if not (start > 0 and stop > 0):
+                raise ValueError(f"a log-spaced axis needs positive start and stop, got {start}, {stop}")
+            return np.geomspace(start, stop, num)
+        raise ValueError(f"axis spacing must be 'linear' or 'log', got {spacing!r}")
+    return np.atleast_1d(np.asarray(axis, dtype=float))
+
+
+def spec_from_config(cfg: Mapping, units: Mapping[str, str] | None = None) -> SweepSpec:
+    """A SweepSpec from a ``sweeps:`` entry of config/config.yaml (axes as lists or grids)."""
+    return SweepSpec(
+        axes={k: axis_values(v) for k, v in cfg["axes"].items()},
+        s=axis_values(cfg["s"]),
+        fixed=dict(cfg.get("fixed", {})),
+        closure=cfg.get("closure"),
+        hertz=cfg.get("hertz", "exact"),
+        accuracy=cfg.get("accuracy", "plot"),
+        with_elastic=bool(cfg.get("with_elastic", True)),
+        **({"units": dict(units)} if units else {}),
+    )

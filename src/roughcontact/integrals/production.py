@@ -1,0 +1,168 @@
+"""The production integrators: the Python side of the numba kernels (:mod:`.kernels`).
+
+Each function validates and lays out its arrays (C-contiguous, writable float64: one numba
+signature per kernel), picks the rules of an accuracy preset (:mod:`.rules`) and runs the
+serial or threaded kernel. Callers: :mod:`roughcontact.contact` (which applies θ-weights,
+prefactors and D_sum) and the tests.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+
+import numba
+import numpy as np
+
+from . import normal_moments
+from .kernels import (
+    _asperity_law_array,
+    _elastic_inner_array,
+    _elastic_rows,
+    _elastic_rows_parallel,
+    _ep_pairs,
+    _ep_pairs_parallel,
+    _moments_array,
+)
+from .rules import elastoplastic_settings_for, gauss_legendre, settings_for
+
+__all__ = [
+    "gaussian_moments",
+    "normal_moment",
+    "elastic_inner_integrals",
+    "polar_elastic_integrals",
+    "asperity_law",
+    "polar_elastoplastic_integrals",
+]
+
+#: the batch is split over threads only above this many separations (a parallel region
+#: costs 10–500 µs on a loaded 2-core machine; one separation is 20–100 µs of work)
+PARALLEL_MIN = 8
+
+
+# ---------------------------------------------------------------------------------------
+# J_ν(a) from the polynomial tables (Chebyshev interpolants, normal_moments.py)
+# ---------------------------------------------------------------------------------------
+@functools.lru_cache(maxsize=1)
+def _moment_table() -> np.ndarray:
+    """normal_moments.table(), shape (piece, ν, power); passed to the kernels as an argument
+    (numba would freeze a global array into its cache, which is invalidated only when this
+    file changes, not the data file)."""
+    return normal_moments.table()
+
+
+def gaussian_moments(a) -> np.ndarray:
+    """J_ν(a) = E[(Z + a)₊^ν] for ν = 0, 1/2, 1, 3/2 (columns), Z ~ N(0, 1), from the
+    Chebyshev tables of normal_moments.py: ≤ 7e-16 relative for every a (measured against
+    mpmath, tests/test_normal_moments.py); exactly 0 below a ≈ −38.6, where J_ν < φ(a)
+    underflows."""
+    a = np.ascontiguousarray(np.atleast_1d(np.asarray(a, dtype=float)))
+    if not np.all(np.isfinite(a)):
+        raise ValueError("normal_moment: arguments must be finite")
+    out = np.empty((a.shape[0], 4))
+    _moments_array(a, _moment_table(), out)
+    return out
+
+
+def normal_moment(a, accuracy=None) -> np.ndarray:
+    """J_ν(a) for ν = 1/2, 1, 3/2 (columns) — :func:`gaussian_moments` without J_0. GW's
+    F_ν(d) = J_ν(−d). ``accuracy`` is accepted for compatibility and ignored (closed form)."""
+    return gaussian_moments(a)[:, 1:]
+
+
+def _use_threads(n_rows: int) -> bool:
+    return n_rows >= PARALLEL_MIN and numba.get_num_threads() > 1
+
+
+def polar_elastic_integrals(l_values, w_area, w_load, g, accuracy="table", *, interpolate=True,
+                            return_used=False):
+    """The dimensionless (θ, r, t) integrals at each l; columns (area, load, stiffness).
+
+    ``w_area``, ``w_load``, ``g`` are per θ-node: θ-weight × cos θ sin θ × f1/c (resp. f2/√c)
+    and g(θ) (see contact/elastic.py for how they are built). ``interpolate=False`` skips the
+    Chebyshev interpolation in g (the slow path, for tests). ``return_used``: also return
+    a bool array, True where the interpolation converged (else the direct θ-sum was used)."""
+    l_values = np.ascontiguousarray(np.atleast_1d(np.asarray(l_values, dtype=float)))
+    if not np.all(np.isfinite(l_values)):
+        raise ValueError("separations must be finite")
+    st = settings_for(accuracy)
+    y, w = gauss_legendre(st.r_nodes)
+    args = (
+        l_values,
+        np.ascontiguousarray(w_area, dtype=float),
+        np.ascontiguousarray(w_load, dtype=float),
+        np.ascontiguousarray(g, dtype=float),
+        y,
+        w,
+        float(st.g_tol),
+        bool(interpolate),
+        _moment_table(),
+    )
+    out = np.empty((l_values.shape[0], 3))
+    used = np.zeros(l_values.shape[0], dtype=np.int64)
+    if _use_threads(l_values.shape[0]):
+        _elastic_rows_parallel(numba.get_num_threads(), *args, out, used)
+    else:
+        _elastic_rows(np.arange(l_values.shape[0]), *args, out, used)
+    return (out, used.astype(bool)) if return_used else out
+
+
+def elastic_inner_integrals(g, l, accuracy="table") -> np.ndarray:
+    """The inner r-integrals (I_area, I_load, I_stiffness) at pairs (g, l), as the kernels
+    compute them (for the tests: a twin with scipy.integrate.quad checks the r-rule)."""
+    g, l = np.broadcast_arrays(np.asarray(g, dtype=float), np.asarray(l, dtype=float))
+    g = np.array(g.reshape(-1))  # writable copies (broadcast views would type as read-only)
+    l = np.array(l.reshape(-1))
+    if not (np.all(np.isfinite(g)) and np.all(g > 0) and np.all(np.isfinite(l))):
+        raise ValueError("g must be finite and positive, l finite")
+    y, w = gauss_legendre(settings_for(accuracy).r_nodes)
+    out = np.empty((g.shape[0], 3))
+    _elastic_inner_array(g, l, y, w, _moment_table(), out)
+    return out
+
+
+def asperity_law(omega, kappa, f1, f2, f3, wc, E_star, ratio, cH, dp) -> np.ndarray:
+    """The numba per-asperity law at arrays of points; columns (A, W, dW/dω, regime).
+    Mirrors asperity.respond (used by the tests to compare the two)."""
+    arrs = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (omega, kappa, f1, f2, f3, wc)))
+    flat = [np.array(a.reshape(-1)) for a in arrs]  # writable copies: one kernel signature
+    out = np.empty((flat[0].shape[0], 4))
+    _asperity_law_array(*flat, float(E_star), float(ratio), float(cH), float(dp), math.log(ratio), out)
+    return out
+
+
+@functools.lru_cache(maxsize=8)
+def _t_rules(n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Gauss–Legendre rules with n, n/2, n/4 nodes (≥ 4) as rows, zero-padded (a zero weight
+    ends a row)."""
+    y = np.zeros((3, n))
+    w = np.zeros((3, n))
+    for row, m in enumerate((n, max(4, n // 2), max(4, n // 4))):
+        y[row, :m], w[row, :m] = gauss_legendre(m)
+    return y, w
+
+
+def polar_elastoplastic_integrals(l_values, nodes, sigma, material_constants, accuracy="table") -> np.ndarray:
+    """Per (l, θ-node) (r, t)-integrals of the elasto-plastic laws; shape (n_l, n_θ, 8).
+
+    ``nodes``: dict of per-θ-node arrays g, c, f1, f2, f3, tc1 (tc1 = ω_c(θ, κ_m = c(θ))/σ);
+    ``material_constants``: (E*, ω_p/ω_c, c_h H, H (c_h − (2/3) K_v), (2/3) K_v H, with_jump).
+    Columns: A^e, A^ep, A^p, W^e, W^ep, W^p, dW/dω, load-jump term (elastoplastic.py
+    applies the θ-weights and D_sum)."""
+    l_values = np.ascontiguousarray(np.atleast_1d(np.asarray(l_values, dtype=float)))
+    if not np.all(np.isfinite(l_values)):
+        raise ValueError("separations must be finite")
+    st = elastoplastic_settings_for(accuracy)
+    y_r, w_r = gauss_legendre(st.r_nodes)
+    y_t, w_t = _t_rules(st.t_nodes)
+    arr = {k: np.ascontiguousarray(nodes[k], dtype=float) for k in ("g", "c", "f1", "f2", "f3", "tc1")}
+    E_star, ratio, cH, dp, pv, with_jump = material_constants
+    out = np.empty((l_values.shape[0], arr["g"].shape[0], 8))
+    args = (l_values, arr["g"], arr["c"], arr["f1"], arr["f2"], arr["f3"], arr["tc1"], float(sigma),
+            float(E_star), float(ratio), float(cH), float(dp), float(pv), bool(with_jump),
+            y_r, w_r, y_t, w_t, _moment_table(), out)
+    if numba.get_num_threads() > 1:
+        _ep_pairs_parallel(numba.get_num_threads(), *args)
+    else:
+        _ep_pairs(np.arange(out.shape[0] * out.shape[1]), *args)
+    return out

@@ -1,0 +1,12 @@
+"""Surface statistics from five spectral moments (section 2 of Buczkowski & Kleiber 2009).
+
+* :mod:`.surface` — :class:`SpectralMoments`: validation, bandwidth parameters α, β, μ, summit
+  density D_sum (17), mean summit curvature, summit-height standard deviation (71)–(72), the
+  offset δ (73), the summit pdf (18), Nayak's extremum densities (12), the bearing area A_B;
+* :mod:`.gw` — McCool's equivalent isotropic Greenwood–Williamson surface (Tables 1–2).
+"""
+
+from .gw import EquivalentGW
+from .surface import SpectralMoments, gaussian_bearing_area
+
+__all__ = ["SpectralMoments", "gaussian_bearing_area", "EquivalentGW"]
