@@ -4,6 +4,7 @@ mirror the packages."""
 
 import ast
 import importlib
+import importlib.util
 import pkgutil
 from pathlib import Path
 
@@ -97,6 +98,22 @@ def test_modules_are_small(path):
         return
     n = len(path.read_text().splitlines())
     assert n <= MAX_LINES, f"{rel} has {n} lines: split it by job (or record why in LONG_MODULES)"
+
+
+@pytest.mark.parametrize("path", _modules(), ids=lambda p: str(p.relative_to(SRC)))
+def test_every_package_import_resolves(path):
+    """Every import of the package — also inside functions, where an import error shows only
+    when the function runs — names a module (or a name of one) that exists."""
+    tree = ast.parse(path.read_text())
+    package = ["roughcontact", *path.relative_to(SRC).parent.parts]
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ImportFrom) and (node.level or (node.module or "").startswith("roughcontact")):
+            base = package[: len(package) - (node.level - 1)] if node.level else []
+            module = ".".join(base + (node.module.split(".") if node.module else []))
+            mod = importlib.import_module(module)
+            for alias in node.names:
+                assert alias.name == "*" or hasattr(mod, alias.name) or importlib.util.find_spec(
+                    f"{module}.{alias.name}") is not None, f"{path.name}:{node.lineno}: {module}.{alias.name}"
 
 
 def test_long_modules_are_still_long():

@@ -140,7 +140,7 @@ def elastic_contact(
         if method == "production":
             F = normal_moment(minus_d)  # closed form (tables): no accuracy setting
         else:
-            from .reference import normal_moments_reference
+            from ..integrals.reference_functions import normal_moments_reference
 
             F = normal_moments_reference(minus_d, dps=dps)
         area, load, stiff = gw.per_unit_area(F)
