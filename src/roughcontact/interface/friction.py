@@ -52,7 +52,12 @@ end of the step, u_N = u_N,n + Δu_N (the total form of (117)), from one of two 
 For p_N = 0 the contact is open: p_N = 0, t_T = 0, D = 0, plastic slips and hardening frozen
 (tangential motion of separated faces is neither elastic nor frictional slip). An engine that
 uses the gap g = -u_N (positive open) and a tension-positive normal stress σ_N = -p_N passes
-Δu_N = -Δg and uses σ_N = -state[..., T_N] and S·D·S with S = diag(1, 1, -1).
+Δu_N = -Δg and uses σ_N = -state[..., T_N] and S·D·S with S = diag(1, 1, -1) (:data:`OPENING_SIGN`; the FE
+engine, roughcontact.fe.contact, does exactly this).
+
+Models without a friction limit: :class:`Frictionless` (t_T ≡ 0, free sliding) and
+:class:`NoSlip` (the elastic law (93)-(94) alone, a stuck interface or tangential springs),
+for tangential restraints the paper leaves open (9.1).
 
 Python interface
 ----------------
@@ -143,19 +148,26 @@ import numpy as np
 from ..validation import positive
 from .kernels import (  # noqa: F401  (the state layout and status codes are part of this API)
     BEYOND, DISSIPATION, FAILED, KAPPA, KAPPA_X, KAPPA_Y, NSTATE, OPEN, SLIP, STICK, T_N, T_X, T_Y,
-    U_N, UP_X, UP_Y, _iso_kernel, _ortho_kernel,
+    U_N, UP_X, UP_Y, _iso_kernel, _no_limit_kernel, _ortho_kernel,
 )
 from .normal_law import InterfaceLaw
 
 __all__ = [
     "NSTATE", "T_X", "T_Y", "T_N", "U_N", "UP_X", "UP_Y", "KAPPA_X", "KAPPA_Y", "KAPPA",
     "DISSIPATION", "STICK", "SLIP", "OPEN",
-    "OrthotropicHardening", "IsotropicHardening", "FrictionUpdate",
+    "OrthotropicHardening", "IsotropicHardening", "Frictionless", "NoSlip", "FrictionUpdate",
+    "OPENING_SIGN",
     "normal_law", "initial_state", "update",
     "limit_function", "hardening_modulus", "continuum_tangent",
     "slip_angle", "traction_angle", "directional_coefficient_115",
     "directional_coefficient_beta", "FIG18_CASES", "fig18_preset",
 ]
+
+#: S = diag(1, 1, −1): an engine's jump (slip_x, slip_y, opening) times S is this module's
+#: (Δu_Tx, Δu_Ty, Δu_N closure); (t_x, t_y, p_N) times S is the tension-positive (t_x, t_y, σ_N);
+#: the tangent D becomes S D S (module docstring, "Normal contact, sign convention ...").
+OPENING_SIGN = np.array([1.0, 1.0, -1.0])
+
 
 # ---------------------------------------------------------------------------------------------
 # models
@@ -220,6 +232,25 @@ class IsotropicHardening:
         return _mu_np(self.mu_m, self.mu_o, self.n, kappa)
 
 
+@dataclass(frozen=True)
+class Frictionless:
+    """No tangential restraint (free sliding): t_T = 0 at every point, the normal law only.
+    Status SLIP where closed (the faces slide freely), OPEN where open."""
+
+    def params(self) -> np.ndarray:
+        return np.array([0.0])
+
+
+@dataclass(frozen=True)
+class NoSlip:
+    """The elastic tangential law (93)-(94) without a friction limit: t_T = t_T,n + K_T Δu_T at
+    every closed point (status STICK), t_T = 0 where open. For a stuck interface, or tangential
+    springs k_T = a k_N (e.g. Mindlin's ratio, Table 3) that never slip."""
+
+    def params(self) -> np.ndarray:
+        return np.array([1.0])
+
+
 def _mu_np(mu_m, mu_o, n, kappa):
     return mu_m * (1.0 - (1.0 - mu_o) * np.exp(-n * np.asarray(kappa, dtype=float)))
 
@@ -270,10 +301,15 @@ def initial_state(shape=(), *, u_N=0.0, k_N=None):
     return s
 
 
+_KERNELS = {OrthotropicHardening: _ortho_kernel, IsotropicHardening: _iso_kernel,
+            Frictionless: _no_limit_kernel, NoSlip: _no_limit_kernel}
+
+
 def _as_model(model):
-    if isinstance(model, (OrthotropicHardening, IsotropicHardening)):
+    if type(model) in _KERNELS:
         return model
-    raise TypeError("model must be an OrthotropicHardening or IsotropicHardening instance")
+    raise TypeError("model must be an OrthotropicHardening, IsotropicHardening, Frictionless or "
+                    "NoSlip instance")
 
 
 def _stiffness_inputs(k_N, k_Tx, k_Ty):
@@ -334,7 +370,7 @@ def update(model, state, du, k_N, k_Tx=None, k_Ty=None, *, tol=1e-12) -> Frictio
 
     Parameters
     ----------
-    model : OrthotropicHardening or IsotropicHardening
+    model : OrthotropicHardening, IsotropicHardening, Frictionless or NoSlip
     state : (..., 9) array, the state at the start of the increment (see module docstring).
     du : (..., 3) array, increment (Δu_Tx, Δu_Ty, Δu_N) of the relative displacement;
         Δu_N > 0 closes the interface.
@@ -360,8 +396,7 @@ def update(model, state, du, k_N, k_Tx=None, k_Ty=None, *, tol=1e-12) -> Frictio
     s_new = np.empty_like(s_old)
     D = np.empty((n, 3, 3))
     status = np.empty(n, dtype=np.int8)
-    kernel = _ortho_kernel if isinstance(model, OrthotropicHardening) else _iso_kernel
-    kernel(model.params(), st, s_old, d, s_new, D, status, tol, tab, h_ref)
+    _KERNELS[type(model)](model.params(), st, s_old, d, s_new, D, status, tol, tab, h_ref)
     if np.any(status == BEYOND):
         bad = np.flatnonzero(status == BEYOND)
         raise ValueError(

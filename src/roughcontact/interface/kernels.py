@@ -536,3 +536,24 @@ def _ortho_kernel(par, stiff, s_old, du, s_new, D, status, tol, tab, h_ref):
 def _iso_kernel(par, stiff, s_old, du, s_new, D, status, tol, tab, h_ref):
     for i in range(s_old.shape[0]):
         status[i] = _iso_point(par, stiff[i], s_old[i], du[i], s_new[i], D[i], tol, tab, h_ref)
+
+
+@numba.njit(cache=True)
+def _no_limit_point(par, stiff, s_old, du, s_new, D, tab, h_ref):
+    """No friction limit: par[0] = 0 frictionless (t_T = 0, D = diag(0, 0, k_N)); par[0] = 1
+    no slip (the elastic law (93)-(94) alone: the stick branch at every closed point)."""
+    status, p, dp, ttx, tty, ktx, kty, dktx, dkty = _begin_update(stiff, s_old, du, s_new, D, tab, h_ref)
+    if status != STICK:
+        return status
+    if par[0] == 0.0:
+        s_new[T_X] = 0.0
+        s_new[T_Y] = 0.0
+        D[2, 2] = dp
+        return SLIP
+    return _stick(ttx, tty, ktx, kty, dp, dktx, dkty, du, s_new, D)
+
+
+@numba.njit(cache=True)
+def _no_limit_kernel(par, stiff, s_old, du, s_new, D, status, tol, tab, h_ref):
+    for i in range(s_old.shape[0]):
+        status[i] = _no_limit_point(par, stiff[i], s_old[i], du[i], s_new[i], D[i], tab, h_ref)

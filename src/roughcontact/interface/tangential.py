@@ -61,9 +61,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..asperity.ellipse import elliptic_BD
+from ..asperity.ellipse import e1_from_lambda, elliptic_BD
+from ..statistics.surface import SpectralMoments
+from ..validation import instance
 
-__all__ = ["NU_MIN", "NU_MAX", "kn_over_kt"]
+__all__ = ["NU_MIN", "NU_MAX", "kn_over_kt", "representative_aspect"]
 
 #: Accepted Poisson's ratio: the physical range of an isotropic elastic half-space,
 #: -1 < ν ≤ 1/2 (positive shear and bulk moduli; ν = 1/2 the incompressible limit, which
@@ -142,3 +144,19 @@ def kn_over_kt(b2_over_a2, nu):
     out = 1.0 + v / (1.0 - v) * ratio  # eq. (96), corrected (module docstring)
     return float(out) if scalar else out
 
+
+
+def representative_aspect(surface: SpectralMoments) -> float:
+    """a_y²/a_x² of the Hertz contact ellipse of a summit whose principal curvatures are the
+    surface's rms curvatures √m40 (along x) and √m04 (along y): curvature ratio
+    λ² = √(m40/m04) (λ² = ω4√m40/(ω6√m04) of section 3 at ω4 = ω6), e1 = B/A from the exact
+    inversion of (27), and the semi-axis along the smaller curvature is the larger one.
+
+    A reading, not the paper's: section 9 takes k_T from (96) without saying for which ellipse;
+    this one summit stands for the surface. Feed it to
+    :func:`roughcontact.interface.mindlin_kT_over_kN` (with ν) for (k_Tx/k_N, k_Ty/k_N)."""
+    instance("surface", surface, SpectralMoments)
+    lam2 = (surface.m40 / surface.m04) ** 0.5
+    e1 = float(e1_from_lambda(min(lam2, 1.0 / lam2) ** 0.5))
+    # the x semi-axis is the major one when x is the direction of smaller curvature (m40 < m04)
+    return e1 * e1 if surface.m40 <= surface.m04 else 1.0 / (e1 * e1)

@@ -1,0 +1,45 @@
+"""Draw an element figure of section 9 (Figs 11, 12, 16, 17) from the engine's own element
+definitions: the PNG and the node table (label, local index, reference coordinates, kind) as CSV."""
+
+import csv
+import io as _io
+
+from roughcontact import io
+from roughcontact.fe.element import ELEMENTS
+from roughcontact.fe.interface_element import INTERFACES
+from roughcontact.paper import drawings, plots
+
+
+def table_csv(rows):
+    """The node table as CSV (one row per node, columns as in drawings.node_table)."""
+    buf = _io.StringIO()
+    w = csv.DictWriter(buf, fieldnames=list(rows[0]), lineterminator="\n")
+    w.writeheader()
+    w.writerows({k: repr(v) if isinstance(v, float) else v for k, v in row.items()} for row in rows)
+    return buf.getvalue()
+
+
+def draw(element_name, title):
+    """(Figure, CSV text) of the element or interface element named ``element_name``."""
+    if element_name in INTERFACES:
+        element = INTERFACES[element_name]
+        fig = drawings.interface_figure(element, title=title)
+    elif element_name in ELEMENTS:
+        element = ELEMENTS[element_name]
+        fig = drawings.element_figure(element, title=title)
+    else:
+        raise ValueError(f"unknown element {element_name!r} (have {sorted(ELEMENTS) + sorted(INTERFACES)})")
+    return fig, table_csv(drawings.node_table(element))
+
+
+def run(element_name, title, out, log):
+    with io.log_to(log) as logger:
+        fig, table = draw(element_name, title)
+        plots.save(fig, out["png"])
+        io.write_text(out["csv"], table)
+        logger.info("%s: %s, %d nodes", out["png"], element_name, table.count("\n") - 1)
+
+
+if "snakemake" in globals():
+    sm = snakemake  # noqa: F821
+    run(sm.params.element, sm.params.title, {"png": sm.output.png, "csv": sm.output.csv}, sm.log[0])
