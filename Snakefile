@@ -29,6 +29,8 @@ rule all:
     localrule: True
     input:
         scene_targets(),
+        fe_targets(),
+        drawing_targets(),
         [f"results/sweeps/{name}.nc" for name in SWEEPS],
         "paper_figures/VERIFICATION.md",
         "results/verify/passed",
@@ -39,4 +41,6 @@ include: "workflow/rules/tables.smk"
 include: "workflow/rules/figures.smk"
 include: "workflow/rules/sweeps.smk"
 include: "workflow/rules/benchmarks.smk"
+include: "workflow/rules/fe.smk"
+include: "workflow/rules/drawings.smk"
 include: "workflow/rules/verify.smk"

@@ -219,11 +219,15 @@ def test_boundary_edges_of_a_box(small_mesh):
 
 
 def test_mesh_figure_draws_interface_supports_and_loads(small_mesh, tmp_path):
-    fig = drawings.mesh_figure(small_mesh, title="t", supports=[("xmin", "symmetry"), ("base", "rigid base")],
+    fig = drawings.mesh_figure(small_mesh, title="t", supports=[("xmin", "symmetry"), ("ymin", "symmetry"),
+                                                                 ("base", "rigid base")],
                                loads=[((1.0, 1.0, 2.0), (0.0, 0.0, -1.0), "F")])
     (interface,) = artists(fig, "interface-face")
     assert len(interface.get_paths()) == len(small_mesh.interfaces[0].cells) == 4
-    assert artists(fig, "support:xmin") and artists(fig, "support:base") and artists(fig, "load:0")
+    # seen from (+x, −y, +z): ymin faces the viewer (triangles); xmin and the base (z = 0) are
+    # turned away (plates behind the body, no triangles floating in front of it)
+    assert artists(fig, "support:ymin") and artists(fig, "plate:xmin") and artists(fig, "plate:base")
+    assert not artists(fig, "support:xmin") and not artists(fig, "support:base") and artists(fig, "load:0")
     (edges,) = artists(fig, "edges")
     fig.canvas.draw()  # projects the 3D segments
     assert len(edges.get_segments()) == 30

@@ -146,3 +146,72 @@ def sweep_parts(name):
     cfg = SWEEPS[name]
     n = len(split(spec_from_config(cfg, config["units"]), cfg["split"]["axis"], cfg["split"]["jobs"]))
     return [f"results/sweeps/{name}/part-{i}.nc" for i in range(n)]
+
+
+# ---------------------------------------------------------------------------------------------
+# finite elements (config: fe)
+# ---------------------------------------------------------------------------------------------
+#: the FE engine and what it stands on; the beam runs also read paper/fe_beam.py (their recipe)
+FE_SOURCES = PHYSICS_SOURCES + library_sources("fe", "paper/fe_beam.py")
+FE_REPORT_SOURCES = REPORT_SOURCES + library_sources("paper/fe_beam.py")
+FE_BEAM = config["fe"]["beam"]
+
+
+def _beam_run(family, case, **override):
+    """One FE run of example 9.1 (roughcontact.paper.fe_beam.beam_case reads it)."""
+    c = FE_BEAM["cases"][case]
+    run = {"family": family, "case": case, "m00": c["m00"], "law": c["law"], "psi": FE_BEAM["psi"],
+           "E_star": FE_BEAM["E_star"], "tangential": FE_BEAM["tangential"], "mu": None,
+           "surface": dict(FE_BEAM["surface"]), "spec": dict(FE_BEAM["spec"])}
+    spec = override.pop("spec", {})
+    run.update(override)
+    run["spec"].update(spec)
+    return run
+
+
+def _beam_runs():
+    """{run name: run}: the main runs of Table 4 (every family and case), then the study's."""
+    runs = {f"{fam}-{case}-main": _beam_run(fam, case) for fam in FE_BEAM["families"] for case in FE_BEAM["cases"]}
+    study = FE_BEAM["study"]
+    elastic = [case for case, c in FE_BEAM["cases"].items() if c["law"] == "elastic"]
+    for case in elastic:
+        for t in study["tangential"]:
+            name = t["tangential"] + (f"-{t['mu']:g}" if "mu" in t else "")
+            runs[f"cubic-{case}-{name}"] = _beam_run("cubic", case, tangential=t["tangential"], mu=t.get("mu"))
+        runs[f"cubic-{case}-estar-caption"] = _beam_run("cubic", case, E_star=study["E_star_caption"])
+    for case, c in FE_BEAM["cases"].items():
+        if c["law"] == "elastoplastic":
+            runs[f"cubic-{case}-printed-Y"] = _beam_run("cubic", case, Y=study["printed_Y"])
+    for fam in FE_BEAM["families"]:
+        for nx, nz in study["meshes"]:
+            runs[f"{fam}-{elastic[0]}-mesh-{nx}x{nz}"] = _beam_run(fam, elastic[0], spec={"n_x": nx, "n_z": nz})
+    return runs
+
+
+FE_BEAM_RUNS = _beam_runs()
+FE_BEAM_MAIN = [name for name in FE_BEAM_RUNS if name.endswith("-main")]
+
+
+def fe_beam_files(names):
+    return [f"results/fe/beam/{name}.nc" for name in names]
+
+
+def fe_targets():
+    """The user-facing files of the FE scenes."""
+    return [f"paper_figures/{name}" for name in ("table4.md", "table4.csv", "fig13.png", "fig13.csv",
+                                                 "fe_beam_study.md", "fe_beam_study.csv", "fig10.png")]
+
+
+FE_TITLES = {
+    "table4": "Table 4: interface deflections of the beam on a rigid base (example 9.1)",
+    "fe_beam_study": "Example 9.1: tangential restraint, E* and mesh convergence",
+}
+
+
+def drawing_targets():
+    """The element drawings (workflow/rules/drawings.smk)."""
+    return [f"paper_figures/{fig}.{ext}" for fig in ("fig11", "fig12", "fig16", "fig17") for ext in ("png", "csv")]
+
+
+def fe_checks():
+    return [f"results/verify/{name}.checks.csv" for name in ("table4", "fe_beam_study")]

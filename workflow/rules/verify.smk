@@ -55,7 +55,7 @@ rule verification_report:
     """paper_figures/VERIFICATION.md (+ CSV and a JSON summary) from every scene's checks and
     the speed-against-error report."""
     input:
-        checks=scene_checks(),
+        checks=scene_checks() + fe_checks(),
         speed="paper_figures/speed_vs_error.md",
         expected="config/expected_verdicts.yaml",
         errata=errata_input,
@@ -67,7 +67,7 @@ rule verification_report:
     log:
         "logs/verify/report.log",
     params:
-        scene_titles={name: sc["title"] for name, sc in SCENES.items()},
+        scene_titles={**{name: sc["title"] for name, sc in SCENES.items()}, **FE_TITLES},
         reference_dps=REFERENCE_DPS,
     localrule: True
     script:
@@ -79,6 +79,8 @@ rule verify:
     table and figure, since the report needs all their checks."""
     input:
         scene_targets(),
+        fe_targets(),
+        drawing_targets(),
         summary="results/verify/summary.json",
         report="paper_figures/VERIFICATION.md",
     output:

@@ -39,7 +39,7 @@ from .contact import InterfaceMaterial
 from .mesh import Mesh, box, graded, rigid_base_interface
 from .solver import ContactModel, NewtonOptions, Solution, solve
 
-__all__ = ["BeamSpec", "BeamResult", "beam_mesh", "beam_model", "run_beam"]
+__all__ = ["BeamSpec", "BeamResult", "beam_mesh", "beam_model", "run_beam", "interface_fields"]
 
 ELEMENT_FAMILIES = ("quadratic", "cubic")
 
@@ -176,6 +176,7 @@ class BeamResult:
     n_points: int
     seconds: float
     solution: Solution = field(repr=False)
+    mesh: Mesh = field(repr=False)
 
     @property
     def u_N_centre_um(self) -> float:
@@ -184,6 +185,38 @@ class BeamResult:
     @property
     def u_N_end_um(self) -> float:
         return float(self.u_N_um[-1])
+
+    def to_dataset(self):
+        """An ``xarray.Dataset``: u_N_um, p_N along the centre line (coordinate x), per interface
+        point the final fields (dimension point), per load level the load, Newton iterations and
+        cut-backs (dimension level); sizes, timings, equilibrium error and the spec as attributes."""
+        import xarray as xr
+
+        f = interface_fields(self)
+        pts = self.solution.model.points
+        ds = xr.Dataset(
+            {
+                "u_N_um": ("x", self.u_N_um, {"units": "um", "long_name": "interface deflection from the seated state, negative = approach"}),
+                "p_N": ("x", self.p_N, {"units": "N/mm^2", "long_name": "interface pressure at the final load"}),
+                "point_x": ("point", pts.x[:, 0], {"units": "mm"}),
+                "point_y": ("point", pts.x[:, 1], {"units": "mm"}),
+                "point_u_N_um": ("point", f["u_N_um"], {"units": "um", "long_name": "deflection from the seated state"}),
+                "point_p_N": ("point", f["p_N"], {"units": "N/mm^2"}),
+                "point_t_x": ("point", f["traction"][:, 0], {"units": "N/mm^2"}),
+                "point_t_y": ("point", f["traction"][:, 1], {"units": "N/mm^2"}),
+                "point_status": ("point", f["status"], {"units": "1", "long_name": "0 stick, 1 slip, 2 open"}),
+                "point_weight": ("point", pts.weights, {"units": "mm^2", "long_name": "area of the point"}),
+                "load": ("level", self.loads, {"units": "N", "long_name": "load on the full beam"}),
+                "newton_iterations": ("level", self.newton_iterations, {"units": "1"}),
+                "cutbacks": ("level", self.cutbacks, {"units": "1"}),
+            },
+            coords={"x": ("x", self.x_mm, {"units": "mm", "long_name": "position along the beam from mid-length"})},
+        )
+        ds.attrs.update(u_N_centre_um=self.u_N_centre_um, u_N_end_um=self.u_N_end_um,
+                        open_points=int(self.open_x_mm.size), equilibrium_error=self.equilibrium_error,
+                        dofs=self.n_dofs, interface_points=self.n_points, seconds=self.seconds,
+                        seating_pressure=self.spec.seating_pressure, **{f"spec_{k}": v for k, v in asdict(self.spec).items()})
+        return ds
 
     def summary(self) -> dict:
         """The numbers a user or a script wants, JSON-ready (the CLI prints it)."""
@@ -212,7 +245,8 @@ def run_beam(spec: BeamSpec, material: InterfaceMaterial, *, options: NewtonOpti
     """Solve example 9.1 with the interface ``material`` (e.g. :func:`.contact.statistical_interface`
     seated at ``spec.seating_pressure``) and return the :class:`BeamResult`."""
     t0 = time.perf_counter()
-    model = beam_model(spec, material)
+    mesh = beam_mesh(spec)
+    model = beam_model(spec, material, mesh)
     sol = solve(model, spec.levels, options, progress)
     pts = model.points
     line = np.flatnonzero(np.isclose(pts.x[:, 1], 0.0))
@@ -234,4 +268,14 @@ def run_beam(spec: BeamSpec, material: InterfaceMaterial, *, options: NewtonOpti
         n_points=pts.n_points,
         seconds=time.perf_counter() - t0,
         solution=sol,
+        mesh=mesh,
     )
+
+
+def interface_fields(result: BeamResult) -> dict[str, np.ndarray]:
+    """Per interface point at the final load: the solver's fields with the closure from the
+    seated state [mm] and u_N [µm] (negative = approach) for files."""
+    fields = result.solution.point_fields(-1, reference=0)
+    fields["u_N_um"] = -fields["closure_mm"] * 1000.0
+    fields["x"] = result.solution.model.points.x
+    return fields

@@ -12,20 +12,24 @@ load level λ_k is reached from the last converged state by Newton's method with
 tangent K + Bᵀ diag(w D) B; the law's state is committed only at convergence.
 
 Convergence (all three, checked after every iteration):
-* force:        ‖r_f‖₂ ≤ force_rtol·max(‖λF_f‖₂, ‖interface forces‖₂) + force_atol [N];
+* force:        ‖r_f‖₂ ≤ force_rtol·max(‖λF_f‖₂, ‖interface forces‖₂) + force_atol + 1000 ε ‖|K| |u|‖₂
+                [N] (the last term is the round-off floor of K u: a soft interface lets a body
+                move far as a rigid body, K u ≈ 0 while |K| |u| is large);
 * increment:    ‖Δu‖_∞ ≤ displacement_rtol·‖u − u_n‖_∞ + displacement_atol [mm] (last correction);
 * active set:   no interface point changed status (stick / slip / open) in the last iteration.
-Non-convergence (iteration limit, a non-finite residual, or a closure beyond the heavy end of a
-tabulated law) halves the step back to the last converged state; after ``max_cutbacks`` halvings
+Non-convergence (iteration limit, a non-finite residual, a singular tangent or a closure beyond
+the heavy end of a tabulated law) halves the step back to the last converged state (the step
+doubles again after every converged sub-step); after ``max_cutbacks`` halvings
 :class:`ConvergenceError` names the increment, the load level and the residual. Never a silently
 wrong answer: every converged increment records its residual history and the equilibrium error
 (applied load vs integrated interface pressure).
 
-Linear solves: ``"condensed"`` (default) factors the bulk once, condenses it onto the interface
+Linear solves: ``"sparse"`` (default) refactors the whole sparse tangent (SuperLU, ordering of
+Aᵀ + A) every iteration; ``"condensed"`` factors the bulk once, condenses it onto the interface
 dofs (dense Schur complement S = K_II − K_IR K_RR⁻¹ K_RI) and per iteration solves the dense
-(S + K_int) system plus two sparse back-substitutions; ``"sparse"`` refactors the whole sparse
-tangent (scipy SuperLU) every iteration. benchmarks/fe_beam.py measures both
-(environment-notes.md records the choice).
+(S + K_int) system plus one or two sparse back-substitutions. benchmarks/fe_beam.py measures
+both (sparse is 1.5–2.3× faster at the beam's converged mesh of ~3600 dofs, condensed wins
+from ~12000 dofs; environment-notes.md records the choice).
 """
 
 from __future__ import annotations
@@ -47,7 +51,11 @@ from .interface_points import InterfacePoints, interface_forces, interface_point
 
 __all__ = ["ContactModel", "NewtonOptions", "Increment", "Solution", "ConvergenceError", "solve"]
 
-_STATUS_CODES = (friction.STICK, friction.SLIP, friction.OPEN)
+#: the round-off floor of a residual r = F − K u − f: this many ulps of |K| |u|
+_ROUNDOFF = 1e3 * np.finfo(float).eps
+#: a Newton correction this many times the displacements so far (or 1 m) is a singular tangent
+_DIVERGED = 1e6
+_DIVERGED_FLOOR = 1e3  # mm
 
 
 class ConvergenceError(RuntimeError):
@@ -69,7 +77,7 @@ class NewtonOptions:
     displacement_rtol: float = 1e-8
     displacement_atol: float = 1e-12
     max_cutbacks: int = 6
-    linear_solver: str = "condensed"
+    linear_solver: str = "sparse"
 
     def __post_init__(self):
         if self.linear_solver not in ("condensed", "sparse"):
@@ -95,7 +103,10 @@ class ContactModel:
 
     def __post_init__(self):
         n = self.stiffness.shape[0]
-        fixed = np.unique(np.asarray(self.fixed, dtype=np.int64))
+        fixed = np.asarray(self.fixed)
+        if fixed.size and not np.issubdtype(fixed.dtype, np.integer):
+            raise TypeError(f"fixed must be integer dof indices, got an array of {fixed.dtype}")
+        fixed = np.unique(fixed.astype(np.int64))
         if fixed.size and (fixed[0] < 0 or fixed[-1] >= n):
             raise ValueError("fixed dofs out of range")
         load = np.asarray(self.load, dtype=float)
@@ -124,6 +135,13 @@ class ContactModel:
             mask[self.fixed] = False
             self._cache["free"] = np.flatnonzero(mask)
         return self._cache["free"]
+
+    @property
+    def abs_stiffness(self) -> sp.csr_matrix:
+        """|K| entrywise (the scale of the round-off of K u)."""
+        if "abs" not in self._cache:
+            self._cache["abs"] = abs(self.stiffness).tocsr()
+        return self._cache["abs"]
 
     @property
     def n_dofs(self) -> int:
@@ -169,6 +187,23 @@ class Solution:
         inc = self.increments[k]
         F = (inc.level * self.model.load).reshape(-1, 3)
         return float(-F.sum(axis=0) @ np.asarray(normal, dtype=float))
+
+    def point_fields(self, k: int = -1, reference: int | None = None) -> dict[str, np.ndarray]:
+        """Per interface point of increment k, for files (VTU, netCDF): ``traction`` (n, 3)
+        [N/mm²] (t_x, t_y, σ_N), ``p_N`` [N/mm²], ``closure_mm`` (from the law's reference
+        state, or from increment ``reference``), ``plastic_slip_mm`` (n, 2), ``status``
+        (0 stick, 1 slip, 2 open)."""
+        inc, material = self.increments[k], self.model.material
+        closure = material.closure_mm(inc.state)
+        if reference is not None:
+            closure = closure - material.closure_mm(self.increments[reference].state)
+        return {
+            "traction": inc.tractions.copy(),
+            "p_N": -inc.tractions[:, 2],
+            "closure_mm": closure,
+            "plastic_slip_mm": inc.state[:, [friction.UP_X, friction.UP_Y]] / material.length_per_mm,
+            "status": inc.status.astype(np.int32),
+        }
 
     def equilibrium_error(self, k: int = -1, normal=(0.0, 0.0, 1.0)) -> float:
         """|integrated interface pressure − applied load| / applied load of increment k."""
@@ -261,12 +296,12 @@ def _linear_solver(model: ContactModel, kind: str):
 # ---------------------------------------------------------------------------------------------
 # Newton
 # ---------------------------------------------------------------------------------------------
-def _newton(model, solver, opts, level, u_n, state_n):
-    """Newton iterations at one load level from the committed (u_n, state_n). Returns
-    (u, response, residuals) or raises _Failed."""
+def _newton(model, solver, opts, level, u_n, state_n, guess):
+    """Newton iterations at one load level from the committed (u_n, state_n), starting at
+    ``guess``. Returns (u, response, residuals) or raises _Failed."""
     free, points, material = model.free, model.points, model.material
     jumps_n = points.jumps(u_n)
-    u = u_n.copy()
+    u = guess.copy()
     f_ext = level * model.load
     residuals, last_du, last_status = [], None, None
     for it in range(opts.max_iterations + 1):
@@ -280,7 +315,10 @@ def _newton(model, solver, opts, level, u_n, state_n):
         residuals.append(norm)
         if not math.isfinite(norm):
             raise _Failed(norm, "non-finite residual")
-        tol_f = opts.force_rtol * max(np.linalg.norm(f_ext[free]), np.linalg.norm(f_int_iface[free])) + opts.force_atol
+        # plus the round-off floor of K u: ε·(|K| |u|) can exceed the forces themselves when a soft
+        # interface lets the body move far as a rigid body (K u ≈ 0 but |K| |u| large)
+        floor = _ROUNDOFF * np.linalg.norm((model.abs_stiffness @ np.abs(u))[free])
+        tol_f = opts.force_rtol * max(np.linalg.norm(f_ext[free]), np.linalg.norm(f_int_iface[free])) + opts.force_atol + floor
         settled = it == 0 or (
             np.max(np.abs(last_du)) <= opts.displacement_rtol * np.max(np.abs(u - u_n)) + opts.displacement_atol
             and np.array_equal(resp.status, last_status))
@@ -288,9 +326,12 @@ def _newton(model, solver, opts, level, u_n, state_n):
             return u, resp, residuals
         if it == opts.max_iterations:
             raise _Failed(norm, f"{opts.max_iterations} iterations without convergence")
-        du = solver(points, resp.tangent, r)
-        if not np.all(np.isfinite(du)):
-            raise _Failed(norm, "singular tangent")
+        try:
+            du = solver(points, resp.tangent, r)
+        except (np.linalg.LinAlgError, RuntimeError) as exc:  # dense LinAlgError, SuperLU "singular"
+            raise _Failed(norm, f"singular tangent ({exc})") from None
+        if not np.all(np.isfinite(du)) or np.max(np.abs(du)) > _DIVERGED * max(np.max(np.abs(u)), _DIVERGED_FLOOR):
+            raise _Failed(norm, "singular tangent (the Newton step diverged)")
         u[free] += du
         last_du, last_status = du, resp.status
 
@@ -313,6 +354,7 @@ def solve(model: ContactModel, levels: Sequence[float], options: NewtonOptions |
     u = np.zeros(model.stiffness.shape[0])
     state = model.material.initial_state(model.points.n_points)
     previous = 0.0
+    rate = None
     out = []
     for k, target in enumerate(levels):
         t0 = time.perf_counter()
@@ -320,16 +362,20 @@ def solve(model: ContactModel, levels: Sequence[float], options: NewtonOptions |
         while True:
             # the last sub-step lands exactly on the target (halved steps sum to it up to rounding)
             trial = target if abs(target - level) <= abs(step) * (1.0 + 1e-9) else level + step
+            # predictor: the last converged step's displacement rate (secant), else u_n
+            guess = u if rate is None else u + rate * (trial - level)
             try:
-                u_new, resp, residuals = _newton(model, solver, opts, trial, u, state)
+                u_new, resp, residuals = _newton(model, solver, opts, trial, u, state, guess)
             except _Failed as fail:
                 cutbacks += 1
                 if cutbacks > opts.max_cutbacks:
                     raise ConvergenceError(k + 1, trial, fail.residual, fail.reason) from None
                 step *= 0.5
                 continue
+            rate = (u_new - u) / (trial - level) if trial != level else None
             u, state, level = u_new, resp.state, trial
             iterations += len(residuals) - 1
+            step *= 2.0  # a cut-back step grows back after every converged sub-step
             if level == target:
                 break
         inc = Increment(level, u.copy(), state.copy(), resp.tractions.copy(), resp.status.copy(),

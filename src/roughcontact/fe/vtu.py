@@ -207,3 +207,16 @@ def write_points(path, xyz, point_data=None) -> Path:
         raise ValueError(f"xyz must have shape (n, 3), got {xyz.shape}")
     cells = [("vertex", np.arange(len(xyz), dtype=np.int64)[:, None])]
     return _write(path, meshio.Mesh(xyz, cells, point_data=_check_point_data(point_data, len(xyz))))
+
+
+def write_solution(path, mesh: Mesh, u, point_fields, points_path=None) -> tuple[Path, Path]:
+    """A solved model for ParaView: the volume with the displacement ``u`` (3N,) [mm] to
+    ``path`` and the interface points with ``point_fields`` (name → per-point array; ``x`` (n, 3)
+    [mm] the positions) to ``points_path`` (default: ``path``'s stem + "_interface.vtu")."""
+    path = Path(path)
+    points_path = Path(points_path) if points_path is not None else path.with_name(path.stem + "_interface.vtu")
+    fields = dict(point_fields)
+    xyz = fields.pop("x")
+    write_mesh(path, mesh, point_data={"displacement_mm": np.asarray(u, dtype=float).reshape(-1, 3)})
+    write_points(points_path, xyz, fields)
+    return path, points_path

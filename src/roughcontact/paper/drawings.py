@@ -388,20 +388,17 @@ def mesh_figure(mesh: Mesh, *, title: str, supports=(), loads=(), highlight_inte
         _limits(ax, lo - pad, hi + pad, zoom=zoom)
         fig.suptitle(title, y=0.97)
         if ax.get_legend_handles_labels()[0]:
-            fig.legend(loc="lower center", fontsize=8, ncol=3, bbox_to_anchor=(0.5, 0.02))
+            fig.legend(loc="lower center", fontsize=8, ncol=2, bbox_to_anchor=(0.5, 0.02))
         fig.text(0.99, 0.005, f"{mesh.n_nodes} nodes, {sum(len(b.cells) for b in mesh.blocks)} cells; mm",
                  ha="right", va="bottom", fontsize=7, color="0.4")
     return fig
 
 
 def _support(ax, mesh: Mesh, name: str, label: str, size: float, view, *, color, max_markers: int = 30):
-    """Triangles at (at most ``max_markers`` of) the nodes of a node set, and a thin plate just
-    outside the body if the set is planar and turned away from the viewer (``view``: a vector
-    towards the camera; a plate in front would hide the body)."""
+    """A planar node set turned away from the viewer (``view``: a vector towards the camera) as
+    a thin plate just outside the body (triangles there would float in front of the body);
+    otherwise triangles at (at most ``max_markers`` of) its nodes."""
     pts = mesh.points[mesh.node_sets[name]]
-    shown = pts[np.linspace(0, len(pts) - 1, min(len(pts), max_markers)).round().astype(int)]
-    ax.scatter(*shown.T, marker="^", s=16, color=color, depthshade=False, zorder=4, label=f"{label} ({name})",
-               gid=f"support:{name}")
     span = np.ptp(pts, axis=0)
     axis = int(np.argmin(span))
     side = np.sign(pts[0, axis] - mesh.points[:, axis].mean()) or -1.0  # away from the body's centre
@@ -411,7 +408,12 @@ def _support(ax, mesh: Mesh, name: str, label: str, size: float, view, *, color,
         corners = np.empty((4, 3))
         corners[:, axis] = pts[0, axis] + side * 0.015 * size
         corners[:, u], corners[:, v] = (lo[u], hi[u], hi[u], lo[u]), (lo[v], lo[v], hi[v], hi[v])
-        _polygon(ax, [corners], color="0.5", alpha=0.35, gid=f"plate:{name}", zorder=0)
+        _polygon(ax, [corners], color=color, alpha=0.3, gid=f"plate:{name}", zorder=0,
+                 label=f"{label} ({name}, behind)")
+        return
+    shown = pts[np.linspace(0, len(pts) - 1, min(len(pts), max_markers)).round().astype(int)]
+    ax.scatter(*shown.T, marker="^", s=16, color=color, depthshade=False, zorder=4, label=f"{label} ({name})",
+               gid=f"support:{name}")
 
 
 def _load(ax, point, force, label: str, length: float, *, gid: str) -> np.ndarray:

@@ -16,7 +16,7 @@ import numpy as np
 
 __all__ = [
     "STYLE", "style", "new_figure", "save", "fig3", "fig4", "fig5", "fig6", "stiffness_vs_pressure",
-    "stiffness_sensitivity", "fig9", "slip_hardening", "friction_cases",
+    "stiffness_sensitivity", "fig9", "slip_hardening", "friction_cases", "fig13",
 ]
 
 #: rcParams of every figure of the project.
@@ -334,5 +334,30 @@ def friction_cases(panels: Mapping[str, tuple], *, xlabel: str, ylabel: str):
             ax.set_title(title, fontsize=9)
             if k == 0:
                 ax.legend(loc="lower center", fontsize=8)
+        fig.tight_layout()
+    return fig
+
+
+def fig13(profiles: Mapping[str, tuple], printed: Mapping[str, tuple] | None = None, *, title: str | None = None):
+    """Fig. 13: interface deflection u_N [µm] along the beam, x [mm] from mid-length.
+    ``profiles``: label → (x, u_N, marker); ``printed``: label → ((x_centre, u_centre), (x_end,
+    u_end)) of Table 4, drawn as open markers of the same colour."""
+    fig = new_figure()
+    with style():
+        ax = fig.add_subplot()
+        for i, (label, (x, u, marker)) in enumerate(profiles.items()):
+            color = _color(i)
+            ax.plot(x, u, "-", color=color, lw=1.2)
+            ax.plot(x[::max(1, len(x) // 12)], u[::max(1, len(x) // 12)], marker, color=color, ls="none",
+                    label=f"{label} (ours)")
+            if printed and label in printed:
+                px, pu = zip(*printed[label])
+                ax.plot(px, pu, marker, color=color, mfc="none", ms=9, mew=1.5, ls="none",
+                        label=f"{label}, Table 4 (paper)")
+        ax.axhline(0.0, color="0.5", lw=0.8)
+        ax.set_xlabel("x [mm] (from mid-length)")
+        ax.set_ylabel("u_N [µm] (from the seated state; < 0 approach)")
+        ax.set_title(title or "Fig. 13: interface deflection along the beam (elastic law)")
+        ax.legend(loc="upper left", fontsize=8, ncol=1)
         fig.tight_layout()
     return fig

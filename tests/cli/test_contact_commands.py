@@ -12,6 +12,7 @@ from pathlib import Path
 import pytest
 
 from roughcontact import __version__, cli
+import roughcontact.cli.contact  # noqa: F401  (cli.contact, monkeypatched below)
 
 # The paper's Table 1 surface (lengths in µm).
 M = dict(m00=0.0625, m20=8e-5, m02=8e-4, m40=1.04e-6, m04=1.04e-4)
@@ -191,7 +192,7 @@ def test_version(capsys):
 
 
 def test_nonfinite_result_is_exit_1(capsys, monkeypatch):
-    monkeypatch.setattr(cli, "_run_surface", lambda args: {"mu": float("nan"), "units": {}})
+    monkeypatch.setattr(cli.contact, "_run_surface", lambda args: {"mu": float("nan"), "units": {}})
     code, out, err = run(capsys, "surface", *MOMENT_ARGS, "--json")
     assert code == 1 and out == ""
     assert err.startswith("roughcontact: error:") and "mu" in err and len(err.splitlines()) == 1
@@ -303,7 +304,7 @@ def test_console_script():
 def _table3_rows():
     import yaml
 
-    table = yaml.safe_load((Path(__file__).parents[1] / "config" / "paper_values.yaml").read_text())["table3"]
+    table = yaml.safe_load((Path(__file__).parents[2] / "config" / "paper_values.yaml").read_text())["table3"]
     columns = [table["columns"][c]["kn_over_kt"] for c in table["columns"]]  # nu = 0, 1/4, 1/2
     # reading of the first column: "10.E-03" -> B^2/A^2 = 1e-3 (see tests/interface/test_tangential.py)
     return [(10.0 ** int(label.split("E")[1]), [col[i] for col in columns]) for i, label in enumerate(table["rows"])]

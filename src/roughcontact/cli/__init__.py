@@ -1,0 +1,208 @@
+"""Command-line interface: ``roughcontact <command> ...``.
+
+A thin layer: parse and validate the arguments, call the library, print the result.
+
+    roughcontact --version
+    roughcontact surface --m00 M --m20 M --m02 M --m40 M --m04 M [--json]
+    roughcontact elastic --m00 M ... --m04 M --E-star E --s S [S ...]
+                         [--model bgk|gw] [--hertz exact|paper]
+                         [--method production|reference] [--accuracy table|plot] [--json]
+    roughcontact elastoplastic --m00 M ... --m04 M --E-star E (--psi P | --yield-strength Y)
+                         [--closure material|yield-from-psi|paper-literal] --s S [S ...]
+                         [--yield-coefficient K] [--c-h C] [--wp-over-wc R] [--hardness H]
+                         [--K-v KV] [--hertz exact|paper] [--method production|reference]
+                         [--accuracy table|plot] [--json]
+    roughcontact mindlin --b2-over-a2 R [R ...] --nu NU [--json]
+
+Exit codes: 0 success; 2 bad input (one line on stderr, "roughcontact: error: ...");
+1 a computed value is not finite. Any other exception is a bug and propagates (traceback).
+
+Lengths are in the unit L of the moments (m00 [L²], m20, m02 [–], m40, m04 [L⁻²]);
+pressures come out in the unit of E*, stiffnesses in (unit of E*)/L.
+
+Subcommands register themselves like :func:`_add_surface` / :func:`_add_elastic`: a subparser
+built on the shared ``moments`` (and, for contact, ``contact``) parent parsers, with ``func``
+set to a handler ``(args) -> payload dict`` and ``render`` set to the human-readable formatter
+of that payload.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+from typing import Any, Callable, Sequence
+
+from .. import __version__
+
+__all__ = ["main", "build_parser", "CLIError"]
+
+PROG = "roughcontact"
+_MOMENTS = ("m00", "m20", "m02", "m40", "m04")
+_MOMENT_HELP = {
+    "m00": "height variance m00 [L^2]",
+    "m20": "slope variance along the grain m20 [1]",
+    "m02": "slope variance across the grain m02 [1]",
+    "m40": "curvature variance along the grain m40 [1/L^2]",
+    "m04": "curvature variance across the grain m04 [1/L^2]",
+}
+
+#: units of SpectralMoments.summary() in terms of the length unit L of the moments
+SURFACE_UNITS = {
+    "m00": "L^2",
+    "m20": "1",
+    "m02": "1",
+    "m40": "1/L^2",
+    "m04": "1/L^2",
+    "alpha1": "1",
+    "alpha2": "1",
+    "beta1": "1",
+    "beta2": "1",
+    "mu": "1",
+    "summit_density": "1/L^2",
+    "mean_summit_curvature": "1/L",
+    "summit_height_std": "L",
+    "summit_mean_height": "L",
+}
+
+# Choices of roughcontact.contact.elastic_contact, repeated here so that building the parser
+# does not import numba (tests/test_cli.py checks they match contact.MODELS/HERTZ/METHODS).
+MODELS = ("bgk", "gw")
+HERTZ = ("exact", "paper")
+METHODS = ("production", "reference")
+ACCURACIES = ("table", "plot")
+# roughcontact.contact.closures.CLOSURES / DEFAULTS, likewise repeated (and checked by the tests)
+CLOSURES = ("material", "yield-from-psi", "paper-literal")
+EP_DEFAULTS = {"yield_coefficient": 1.62, "c_h": 0.967, "wp_over_wc": 45.0}
+
+
+class CLIError(Exception):
+    """An error reported as one stderr line with the given exit code."""
+
+    def __init__(self, message: str, code: int = 2):
+        super().__init__(message)
+        self.code = code
+
+
+def _one_line(message: str) -> str:
+    return " ".join(str(message).split())
+
+
+class _Parser(argparse.ArgumentParser):
+    """ArgumentParser whose errors are one stderr line (no usage block), exit code 2."""
+
+    def error(self, message: str):  # type: ignore[override]
+        self.exit(2, f"{PROG}: error: {_one_line(message)}\n")
+
+
+def _real(text: str) -> float:
+    """argparse type: any string float() accepts; range checks are the library's."""
+    try:
+        return float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be a real number, got {text!r}") from None
+
+
+# ---------------------------------------------------------------------------------------
+# parser
+# ---------------------------------------------------------------------------------------
+def _moments_parent() -> argparse.ArgumentParser:
+    parent = _Parser(add_help=False)
+    group = parent.add_argument_group("spectral moments (one consistent length unit L)")
+    for name in _MOMENTS:
+        group.add_argument(
+            f"--{name}", type=_real, required=True, metavar="M", help=_MOMENT_HELP[name]
+        )
+    return parent
+
+
+def _output_parent() -> argparse.ArgumentParser:
+    parent = _Parser(add_help=False)
+    parent.add_argument(
+        "--json", action="store_true", help="print one strict JSON object instead of text"
+    )
+    return parent
+
+
+def _contact_parent() -> argparse.ArgumentParser:
+    """Options shared by the contact commands (elastic, elastoplastic)."""
+    parent = _Parser(add_help=False)
+    parent.add_argument(
+        "--E-star", dest="E_star", type=_real, required=True, metavar="E",
+        help="effective modulus E* (any stress unit; the pressure comes out in it)",
+    )
+    parent.add_argument(
+        "--s", dest="s", type=_real, nargs="+", required=True, metavar="S",
+        help="separations s = h/sqrt(m00) of the flat from the mean plane",
+    )
+    parent.add_argument("--hertz", choices=HERTZ, default="exact",
+                        help="Hertz functions: exact, or the paper's approximations (default exact)")
+    parent.add_argument("--method", choices=METHODS, default="production",
+                        help="integrator: production (numba) or reference (slow twin)")
+    parent.add_argument("--accuracy", choices=ACCURACIES, default="table",
+                        help="production quadrature preset (default table)")
+    return parent
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(
+        prog=PROG,
+        description="Statistical contact of strongly anisotropic rough surfaces "
+        "(Buczkowski & Kleiber 2009).",
+    )
+    parser.add_argument("--version", action="version", version=f"{PROG} {__version__}")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
+    from . import contact, fe
+
+    parents = [_moments_parent(), _output_parent()]
+    contact.add_commands(sub, parents)
+    fe.add_commands(sub, parents)
+    return parser
+
+
+def _check_finite(payload: Any, path: str = "") -> None:
+    """Raise CLIError (exit 1) naming the first non-finite number in the payload."""
+    if isinstance(payload, dict):
+        for key, value in payload.items():
+            _check_finite(value, f"{path}.{key}" if path else str(key))
+    elif isinstance(payload, (list, tuple)):
+        for i, value in enumerate(payload):
+            _check_finite(value, f"{path}[{i}]")
+    elif isinstance(payload, float) and not math.isfinite(payload):
+        raise CLIError(f"computed {path} is not finite ({payload!r})", code=1)
+
+
+# ---------------------------------------------------------------------------------------
+# entry point
+# ---------------------------------------------------------------------------------------
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the CLI on ``argv`` (default ``sys.argv[1:]``); return the exit code."""
+    parser = build_parser()
+    try:
+        args = parser.parse_args(argv)
+    except SystemExit as exc:  # --help, --version, or a parse error (already reported)
+        return exc.code if isinstance(exc.code, int) else (0 if exc.code is None else 1)
+
+    handler: Callable[[Any], dict[str, Any]] = args.func
+    try:
+        try:
+            payload = handler(args)
+        except (ValueError, TypeError) as exc:
+            # the library's validation errors name the violated condition
+            raise CLIError(_one_line(str(exc)), code=2) from exc
+        _check_finite(payload)
+        text = (
+            json.dumps(payload, indent=2, allow_nan=False)
+            if args.json
+            else args.render(payload)
+        )
+    except CLIError as exc:
+        print(f"{PROG}: error: {_one_line(str(exc))}", file=sys.stderr)
+        return exc.code
+    print(text)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

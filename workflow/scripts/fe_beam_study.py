@@ -1,0 +1,43 @@
+"""The study of example 9.1 (rule fe_beam_study): tangential restraint, E*, mesh convergence;
+paper_figures/fe_beam_study.md/.csv and results/verify/fe_beam_study.checks.csv."""
+
+import csv
+import io as _io
+from pathlib import Path
+
+import yaml
+
+from roughcontact import io
+from roughcontact.paper import fe_beam, verify
+
+
+def run(run_paths, runs, cfg, expected, out, log):
+    with io.log_to(log) as logger:
+        data = {Path(p).stem: io.read_netcdf(p) for p in run_paths}
+        attrs = {name: ds.attrs for name, ds in data.items()}
+        rows = fe_beam.study_rows(attrs, runs)
+        main = {f"{r['family']}/{r['case']}/{q}": r[f"{q}_um"] for r in rows if r["variant"] == "main"
+                for q in fe_beam.QUANTITIES}
+        variants = {f"{r['family']}/{r['case']}/{r['variant']}": {q: r[f"{q}_um"] for q in fe_beam.QUANTITIES}
+                    for r in rows if r["variant"] != "main"}
+        elastic = {c: next(e for e, ce in cfg["cases"].items() if ce["law"] == "elastic" and ce["m00"] == cc["m00"])
+                   for c, cc in cfg["cases"].items()}
+        checks = fe_beam.study_checks("fe_beam_study", main, variants, cfg["study"], elastic)
+        checks = verify.apply_expectations(checks, yaml.safe_load(Path(expected).read_text()))
+        for c in checks:
+            logger.info("%s: %s (%s) %s", c.id, c.verdict, c.status, c.detail)
+        prov = io.read_provenance(next(iter(data.values())))
+        shown = {"roughcontact": prov.get("roughcontact_version"), "commit": str(prov.get("git_commit", "unknown"))[:12]}
+        io.write_text(out["md"], fe_beam.render_study_markdown(rows, checks, shown))
+        buf = _io.StringIO()
+        w = csv.DictWriter(buf, fieldnames=list(rows[0]), lineterminator="\n")
+        w.writeheader()
+        w.writerows(rows)
+        io.write_text(out["csv"], buf.getvalue())
+        io.write_text(out["checks"], verify.checks_to_csv(checks))
+
+
+if "snakemake" in globals():
+    sm = snakemake  # noqa: F821
+    run(list(sm.input.runs), sm.params.runs, sm.params.cfg, sm.input.expected,
+        {"md": sm.output.md, "csv": sm.output.csv, "checks": sm.output.checks}, sm.log[0])

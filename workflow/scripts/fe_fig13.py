@@ -1,0 +1,42 @@
+"""Fig. 13 (rule fe_fig13): u_N along the beam for the three m00 of the elastic rows, with
+Table 4's printed centre and end values; PNG and CSV."""
+
+import csv
+import io as _io
+from pathlib import Path
+
+import yaml
+
+from roughcontact import io
+from roughcontact.paper import plots
+
+#: the paper's markers (Fig. 13 caption): m00 = 0.0625 triangles, 0.3125 crosses, 0.625 squares
+MARKERS = {0.0625: "^", 0.3125: "x", 0.625: "s"}
+
+
+def run(run_paths, runs, paper, out, log):
+    with io.log_to(log):
+        table = yaml.safe_load(Path(paper).read_text())["table4"]
+        printed = table["columns"]["printed"]
+        rows = [str(r) for r in table["rows"]]
+        profiles, marks, buf = {}, {}, _io.StringIO()
+        w = csv.writer(buf, lineterminator="\n")
+        w.writerow(["m00_um2", "x_mm", "u_N_um", "p_N_N_per_mm2"])
+        for path in sorted(run_paths, key=lambda p: -runs[Path(p).stem]["m00"]):
+            run_cfg = runs[Path(path).stem]
+            ds = io.read_netcdf(path)
+            label = f"m00 = {run_cfg['m00']:g} µm²"
+            x, u = ds["x"].values, ds["u_N_um"].values
+            profiles[label] = (x, u, MARKERS.get(run_cfg["m00"], "o"))
+            i = rows.index(run_cfg["case"])
+            marks[label] = ((0.0, float(printed["u_N_centre"][i])), (float(x[-1]), float(printed["u_N_end"][i])))
+            for xi, ui, pi in zip(x, u, ds["p_N"].values):
+                w.writerow([repr(run_cfg["m00"]), repr(float(xi)), repr(float(ui)), repr(float(pi))])
+        fig = plots.fig13(profiles, marks)
+        io.write_text(out["csv"], buf.getvalue())
+        plots.save(fig, out["png"])
+
+
+if "snakemake" in globals():
+    sm = snakemake  # noqa: F821
+    run(list(sm.input.runs), sm.params.runs, sm.input.paper, {"png": sm.output.png, "csv": sm.output.csv}, sm.log[0])

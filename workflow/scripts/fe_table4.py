@@ -1,0 +1,46 @@
+"""Table 4 (rule fe_table4): the main runs against the printed values (both element families),
+the prose claims of 9.1; paper_figures/table4.md/.csv and results/verify/table4.checks.csv."""
+
+from pathlib import Path
+
+import yaml
+
+from roughcontact import io
+from roughcontact.paper import fe_beam, report, verify
+
+
+def run(run_paths, runs, cfg, paper, expected, out, log):
+    with io.log_to(log) as logger:
+        paper_table = yaml.safe_load(Path(paper).read_text())["table4"]
+        data = {Path(p).stem: io.read_netcdf(p) for p in run_paths}
+        attrs = {name: ds.attrs for name, ds in data.items()}
+        cases = [str(c) for c in paper_table["rows"]]
+        results = fe_beam.table4_results(attrs, runs, cases)
+        models = {f"fe-{fam}": {"paper_column": "printed",
+                                "label": f"{'28-node + 32-node' if fam == 'cubic' else '21-node + 18-node'} elements, "
+                                         f"{cfg['tangential']} tangential restraint"}
+                  for fam in cfg["families"]}
+        tol = cfg["tolerances"]
+        tolerances = {"printed_rounding": tol["printed_rounding"],
+                      **{m: {"u_N_centre": tol["centre"], "u_N_end": tol["end"]} for m in models}}
+        checks = verify.table_cell_checks("table4", paper_table, results, models, tolerances)
+        open_points = {f"fe-{runs[n]['family']}": {} for n in runs}
+        for name, run_cfg in runs.items():
+            open_points[f"fe-{run_cfg['family']}"][run_cfg["case"]] = attrs[name]["open_points"]
+        checks += fe_beam.table4_claims("table4", results, cfg["cases"], open_points, cfg["claims"])
+        checks = verify.apply_expectations(checks, yaml.safe_load(Path(expected).read_text()))
+        for c in checks:
+            logger.info("%s: %s (%s) %s", c.id, c.verdict, c.status, c.detail)
+        prov = io.read_provenance(next(iter(data.values())))
+        shown = {"roughcontact": prov.get("roughcontact_version"), "commit": str(prov.get("git_commit", "unknown"))[:12]}
+        title = ("Table 4: interface deflection at the centre and the end of the beam [um], from the seated state "
+                 f"(E* = {cfg['E_star']:.6g} N/mm^2, {cfg['tangential']} tangential restraint)")
+        io.write_text(out["md"], report.render_table_markdown(title, checks, paper_table, models, provenance=shown))
+        io.write_text(out["csv"], report.render_table_csv(checks, models))
+        io.write_text(out["checks"], verify.checks_to_csv(checks))
+
+
+if "snakemake" in globals():
+    sm = snakemake  # noqa: F821
+    run(list(sm.input.runs), sm.params.runs, sm.params.cfg, sm.input.paper, sm.input.expected,
+        {"md": sm.output.md, "csv": sm.output.csv, "checks": sm.output.checks}, sm.log[0])
