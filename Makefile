@@ -4,7 +4,7 @@
 #   make test        create .venv (if missing), install, run the test suite (fast tier, < 3 min)
 #
 # Other targets: test-slow (the slow tier: mpmath references, workflow runs; CI runs it), test-all,
-# bench (speed against error, full mode), verify (verification report and verdict gate only),
+# bench (speed against error, full mode), bench-fe (FE linear solvers), verify (verification report and verdict gate only),
 # dry-run, ci (.ci/run), clean (generated results), distclean (+ .venv).
 
 SHELL := /bin/bash
@@ -21,7 +21,7 @@ SNAKEMAKE := $(BIN)/snakemake --workflow-profile workflow/profiles/default --cor
 # need no re-install).
 STAMP  := $(VENV)/.installed
 
-.PHONY: help venv reproduce bench test test-slow test-all verify dry-run ci clean distclean
+.PHONY: help venv reproduce bench bench-fe test test-slow test-all verify dry-run ci clean distclean
 
 help:
 	@sed -n '3,8p' Makefile
@@ -47,6 +47,10 @@ reproduce: $(STAMP)
 # runs only where benchmarks/data/tplquad.json has no record; mpmath references are cached)
 bench: $(STAMP)
 	$(SNAKEMAKE) speed_vs_error --config benchmark_mode=full
+
+# FE linear solvers (sparse refactorisation vs condensed bulk) on the beam, coarse to fine meshes
+bench-fe: $(STAMP)
+	$(PY) benchmarks/fe_linear_solvers.py
 
 # pyproject.toml deselects the mpmath- and slow-marked tests by default ("fast by default")
 test: $(STAMP)

@@ -190,16 +190,33 @@ def _beam_runs():
 
 FE_BEAM_RUNS = _beam_runs()
 FE_BEAM_MAIN = [name for name in FE_BEAM_RUNS if name.endswith("-main")]
+#: one job per (family, case) solves the case's runs (its main run and study variants): the
+#: job's fixed cost (interpreter, imports, normal-law table) is paid once per case
+FE_BEAM_GROUPS = {}
+for _name, _run in FE_BEAM_RUNS.items():
+    FE_BEAM_GROUPS.setdefault(f"{_run['family']}-{_run['case']}", {})[_name.split("-", 2)[2]] = _run
 
 
-def fe_beam_files(names):
-    return [f"results/fe/beam/{name}.nc" for name in names]
+def fe_beam_group(name):
+    """The job (family-case) of a run name family-case-variant."""
+    return "-".join(name.split("-", 2)[:2])
+
+
+def fe_beam_dirs(names):
+    """The job directories holding the runs ``names``."""
+    return sorted({f"results/fe/beam/{fe_beam_group(n)}" for n in names})
+
+
+def fe_beam_paths(names):
+    """{run name: its netCDF file}."""
+    return {n: f"results/fe/beam/{fe_beam_group(n)}/{n.split('-', 2)[2]}.nc" for n in names}
 
 
 def fe_targets():
     """The user-facing files of the FE scenes."""
     return [f"paper_figures/{name}" for name in ("table4.md", "table4.csv", "fig13.png", "fig13.csv",
-                                                 "fe_beam_study.md", "fe_beam_study.csv", "fig10.png")]
+                                                 "fe_beam_study.md", "fe_beam_study.csv", "fig10.png",
+                                                 "fe_benchmark.md")]
 
 
 FE_TITLES = {

@@ -11,9 +11,9 @@ from roughcontact import io
 from roughcontact.paper import fe_beam, verify
 
 
-def run(run_paths, runs, cfg, expected, out, log):
+def run(paths, runs, cfg, expected, out, log):
     with io.log_to(log) as logger:
-        data = {Path(p).stem: io.read_netcdf(p) for p in run_paths}
+        data = {name: io.read_netcdf(path) for name, path in paths.items()}
         attrs = {name: ds.attrs for name, ds in data.items()}
         rows = fe_beam.study_rows(attrs, runs)
         main = {f"{r['family']}/{r['case']}/{q}": r[f"{q}_um"] for r in rows if r["variant"] == "main"
@@ -39,5 +39,5 @@ def run(run_paths, runs, cfg, expected, out, log):
 
 if "snakemake" in globals():
     sm = snakemake  # noqa: F821
-    run(list(sm.input.runs), sm.params.runs, sm.params.cfg, sm.input.expected,
+    run(sm.params.paths, sm.params.runs, sm.params.cfg, sm.input.expected,
         {"md": sm.output.md, "csv": sm.output.csv, "checks": sm.output.checks}, sm.log[0])

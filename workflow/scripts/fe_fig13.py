@@ -14,7 +14,7 @@ from roughcontact.paper import plots
 MARKERS = {0.0625: "^", 0.3125: "x", 0.625: "s"}
 
 
-def run(run_paths, runs, paper, out, log):
+def run(paths, runs, paper, out, log):
     with io.log_to(log):
         table = yaml.safe_load(Path(paper).read_text())["table4"]
         printed = table["columns"]["printed"]
@@ -22,9 +22,9 @@ def run(run_paths, runs, paper, out, log):
         profiles, marks, buf = {}, {}, _io.StringIO()
         w = csv.writer(buf, lineterminator="\n")
         w.writerow(["m00_um2", "x_mm", "u_N_um", "p_N_N_per_mm2"])
-        for path in sorted(run_paths, key=lambda p: -runs[Path(p).stem]["m00"]):
-            run_cfg = runs[Path(path).stem]
-            ds = io.read_netcdf(path)
+        for name in sorted(paths, key=lambda n: -runs[n]["m00"]):
+            run_cfg = runs[name]
+            ds = io.read_netcdf(paths[name])
             label = f"m00 = {run_cfg['m00']:g} µm²"
             x, u = ds["x"].values, ds["u_N_um"].values
             profiles[label] = (x, u, MARKERS.get(run_cfg["m00"], "o"))
@@ -39,4 +39,4 @@ def run(run_paths, runs, paper, out, log):
 
 if "snakemake" in globals():
     sm = snakemake  # noqa: F821
-    run(list(sm.input.runs), sm.params.runs, sm.input.paper, {"png": sm.output.png, "csv": sm.output.csv}, sm.log[0])
+    run(sm.params.paths, sm.params.runs, sm.input.paper, {"png": sm.output.png, "csv": sm.output.csv}, sm.log[0])

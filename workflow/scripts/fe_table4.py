@@ -9,10 +9,10 @@ from roughcontact import io
 from roughcontact.paper import fe_beam, report, verify
 
 
-def run(run_paths, runs, cfg, paper, expected, out, log):
+def run(paths, runs, cfg, paper, expected, out, log):
     with io.log_to(log) as logger:
         paper_table = yaml.safe_load(Path(paper).read_text())["table4"]
-        data = {Path(p).stem: io.read_netcdf(p) for p in run_paths}
+        data = {name: io.read_netcdf(path) for name, path in paths.items()}
         attrs = {name: ds.attrs for name, ds in data.items()}
         cases = [str(c) for c in paper_table["rows"]]
         results = fe_beam.table4_results(attrs, runs, cases)
@@ -42,5 +42,5 @@ def run(run_paths, runs, cfg, paper, expected, out, log):
 
 if "snakemake" in globals():
     sm = snakemake  # noqa: F821
-    run(list(sm.input.runs), sm.params.runs, sm.params.cfg, sm.input.paper, sm.input.expected,
+    run(sm.params.paths, sm.params.runs, sm.params.cfg, sm.input.paper, sm.input.expected,
         {"md": sm.output.md, "csv": sm.output.csv, "checks": sm.output.checks}, sm.log[0])

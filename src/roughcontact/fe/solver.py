@@ -24,12 +24,14 @@ doubles again after every converged sub-step); after ``max_cutbacks`` halvings
 wrong answer: every converged increment records its residual history and the equilibrium error
 (applied load vs integrated interface pressure).
 
-Linear solves: ``"sparse"`` (default) refactors the whole sparse tangent (SuperLU, ordering of
-Aᵀ + A) every iteration; ``"condensed"`` factors the bulk once, condenses it onto the interface
+Linear solves: ``"condensed"`` (default) factors the bulk once, condenses it onto the interface
 dofs (dense Schur complement S = K_II − K_IR K_RR⁻¹ K_RI) and per iteration solves the dense
-(S + K_int) system plus one or two sparse back-substitutions. benchmarks/fe_beam.py measures
-both (sparse is 1.5–2.3× faster at the beam's converged mesh of ~3600 dofs, condensed wins
-from ~12000 dofs; environment-notes.md records the choice).
+(S + K_int) system (Cholesky when the interface tangent is symmetric) plus one or two sparse
+back-substitutions; ``"sparse"`` refactors the whole sparse tangent (SuperLU, ordering of
+Aᵀ + A) every iteration. The Newton loop runs with ``blas_threads`` BLAS threads (1: on
+these dense systems of a few hundred to a few thousand unknowns a second thread costs more
+than it gains, and on a loaded machine far more). ``make bench-fe`` measures both strategies
+(results/benchmarks/fe_linear_solvers.md; environment-notes.md records the choice).
 """
 
 from __future__ import annotations
@@ -77,11 +79,14 @@ class NewtonOptions:
     displacement_rtol: float = 1e-8
     displacement_atol: float = 1e-12
     max_cutbacks: int = 6
-    linear_solver: str = "sparse"
+    linear_solver: str = "condensed"
+    blas_threads: int | None = 1
 
     def __post_init__(self):
         if self.linear_solver not in ("condensed", "sparse"):
             raise ValueError(f"linear_solver must be 'condensed' or 'sparse', got {self.linear_solver!r}")
+        if self.blas_threads is not None and not (isinstance(self.blas_threads, int) and self.blas_threads >= 1):
+            raise ValueError(f"blas_threads must be a positive integer or None, got {self.blas_threads!r}")
         if not (self.max_iterations >= 1 and self.max_cutbacks >= 0):
             raise ValueError("max_iterations must be >= 1 and max_cutbacks >= 0")
         for name in ("force_rtol", "force_atol", "displacement_rtol", "displacement_atol"):
@@ -347,6 +352,15 @@ def solve(model: ContactModel, levels: Sequence[float], options: NewtonOptions |
     N), each reached from the previous converged state (the first from u = 0 and the
     material's initial state). ``progress(k, n, increment)`` is called after every level."""
     opts = options or NewtonOptions()
+    if opts.blas_threads is None:
+        return _solve(model, levels, opts, progress)
+    from threadpoolctl import threadpool_limits
+
+    with threadpool_limits(limits=opts.blas_threads, user_api="blas"):
+        return _solve(model, levels, opts, progress)
+
+
+def _solve(model, levels, opts, progress) -> Solution:
     levels = [float(x) for x in levels]
     if not levels or not all(math.isfinite(x) for x in levels):
         raise ValueError("levels must be a non-empty sequence of finite load levels")
