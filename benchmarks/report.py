@@ -206,6 +206,19 @@ def _fmt_e(e):
     return f"≤{FLOOR:.0e}" if e < FLOOR else f"{e:.1e}"
 
 
+def _seed_note(results: dict) -> str:
+    """Where the references came from: computed in this run, or the committed seed."""
+    seeded = results.get("references_seeded", {})
+    total = len(results.get("reference_seconds", {}))
+    if not seeded:
+        return f"References: all {total} computed in this run."
+    dates = ", ".join(sorted(set(seeded.values())))
+    return (f"References: {total - len(seeded)} computed in this run, {len(seeded)} taken from "
+            f"benchmarks/data/references.json (computed on {dates} by the same reference code: source "
+            f"fingerprint {results.get('reference_fingerprint', '?')}; a changed reference integrator is "
+            "recomputed, `--no-seed` recomputes all).")
+
+
 def markdown(results: dict) -> str:
     s = results["summary"]
     m0, m1 = results["machine_before"], results["machine_after"]
@@ -227,6 +240,8 @@ def markdown(results: dict) -> str:
         "infeasible there, see the reference checks; the twin's own rows at looser rtol are therefore "
         "compared with itself and look better than they are). The naive scipy tplquad computes one "
         "quantity per call (its time is per quantity).",
+        "",
+        _seed_note(results),
         "",
         "## Goals",
         "",

@@ -219,6 +219,10 @@ def main(argv=None) -> int:
     ap.add_argument("--quick", action="store_true", help="fewer points and methods (CI, ~2 min)")
     ap.add_argument("--repeat", type=int, default=None, help="timing repeats (default 7, quick 3)")
     ap.add_argument("--no-compile-probe", action="store_true", help="skip the cold/warm numba cache probe")
+    ap.add_argument("--no-seed", action="store_true",
+                    help="compute every reference here, none from benchmarks/data/references.json")
+    ap.add_argument("--update-seed", action="store_true",
+                    help="write the references computed in this run into benchmarks/data/references.json")
     ap.add_argument("--from-json", action="store_true",
                     help="only redraw the figure and rewrite the report from <out-dir>/results.json")
     args = ap.parse_args(argv)
@@ -234,7 +238,7 @@ def main(argv=None) -> int:
     out_dir.mkdir(parents=True, exist_ok=True)
     t_start = time.perf_counter()
     info_before = machine.info()
-    cache = refs.ReferenceCache(out_dir / "references.json")
+    cache = refs.ReferenceCache(out_dir / "references.json", seed=None if args.no_seed else refs.SEED)
 
     if quick:
         el_points = [("table1", 1.0), ("table1", 3.5), ("aniso1e4", 0.0), ("aniso1e4", 3.0)]
@@ -282,6 +286,8 @@ def main(argv=None) -> int:
         "reference_checks": checks,
         "compile": compile_info,
         "reference_seconds": {k: v["seconds"] for k, v in cache.data.items()},
+        "references_seeded": cache.seeded,
+        "reference_fingerprint": cache.fingerprint,
     }
     results["summary"] = report.summarise(results)
     (out_dir / "results.json").write_text(json.dumps(results, indent=1, default=float))
@@ -289,6 +295,8 @@ def main(argv=None) -> int:
     report.figure(results, args.figure)
     Path(args.report).parent.mkdir(parents=True, exist_ok=True)
     Path(args.report).write_text(report.markdown(results))
+    if args.update_seed:
+        print(f"{cache.update_seed()} references written to {refs.SEED}")
     print(f"wrote {out_dir}/results.json, results.nc, {args.figure}, {args.report} "
           f"in {time.perf_counter() - t_start:.0f} s")
     return 0

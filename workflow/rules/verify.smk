@@ -57,6 +57,7 @@ rule verification_report:
     input:
         checks=scene_checks() + fe_checks(),
         speed="paper_figures/speed_vs_error.md",
+        fe_speed="paper_figures/fe_benchmark.md",
         expected="config/expected_verdicts.yaml",
         errata=errata_input,
         code=REPORT_SOURCES,

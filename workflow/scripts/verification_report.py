@@ -20,7 +20,16 @@ def _speed_section(path):
     )
 
 
-def run(checks_files, speed, expected, errata, scene_titles, reference_dps, out, log):
+def _fe_section(path):
+    """The FE speed-and-size report's job table and summary (the per-run table stays in its file)."""
+    lines = Path(path).read_text().splitlines()
+    start = next(i for i, line in enumerate(lines) if line.startswith("| job"))
+    return ("Measured by the workflow's FE jobs (`snakemake fe_beam`; every run's dofs, interface points, "
+            "Newton iterations and solve time in [fe_benchmark.md](fe_benchmark.md)).\n\n"
+            + "\n".join(lines[start:]).strip() + "\n")
+
+
+def run(checks_files, speed, fe_speed, expected, errata, scene_titles, reference_dps, out, log):
     with io.log_to(log) as logger:
         checks = []
         for path in checks_files:
@@ -37,13 +46,13 @@ def run(checks_files, speed, expected, errata, scene_titles, reference_dps, out,
         logger.info("summary: %s", json.dumps({k: v for k, v in summary.items() if k != "by_kind"}))
         io.write_text(out["md"], report.render_verification_markdown(
             checks, errata=errata_list, provenance=provenance, scene_titles=scene_titles,
-            sections={"Speed against error": _speed_section(speed)}))
+            sections={"Speed against error": _speed_section(speed), "FE speed and size": _fe_section(fe_speed)}))
         io.write_text(out["csv"], verify.checks_to_csv(checks))
         io.write_text(out["summary"], json.dumps(summary, indent=2, sort_keys=True) + "\n")
 
 
 if "snakemake" in globals():
     sm = snakemake  # noqa: F821
-    run(list(sm.input.checks), sm.input.speed, sm.input.expected, list(sm.input.errata), sm.params.scene_titles,
+    run(list(sm.input.checks), sm.input.speed, sm.input.fe_speed, sm.input.expected, list(sm.input.errata), sm.params.scene_titles,
         sm.params.reference_dps, {"md": sm.output.md, "csv": sm.output.csv, "summary": sm.output.summary},
         sm.log[0])

@@ -1,0 +1,37 @@
+"""The benchmark's reference cache takes a committed (seed) value only when it was computed by
+the same reference code (benchmarks/references.py: fingerprint of the reference modules)."""
+
+import json
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
+
+import references as refs  # noqa: E402
+
+
+def _seed(tmp_path, fingerprint):
+    path = tmp_path / "seed.json"
+    path.write_text(json.dumps({"k": {"value": [1.0], "seconds": 9.0, "fingerprint": fingerprint,
+                                      "date": "2026-01-01"}}))
+    return path
+
+
+def test_seed_with_the_same_code_is_used(tmp_path):
+    cache = refs.ReferenceCache(tmp_path / "cache.json", seed=_seed(tmp_path, refs.code_fingerprint()))
+    assert cache.get("k", lambda: [2.0]) == [1.0]
+    assert cache.seeded == {"k": "2026-01-01"}
+
+
+def test_seed_from_other_code_is_recomputed(tmp_path):
+    cache = refs.ReferenceCache(tmp_path / "cache.json", seed=_seed(tmp_path, "0" * 16))
+    assert cache.get("k", lambda: [2.0]) == [2.0]
+    assert cache.seeded == {}
+
+
+def test_committed_seed_matches_todays_reference_code():
+    """A change to the reference integrators must come with a refreshed seed
+    (`benchmarks/speed_vs_error.py --quick --no-seed --update-seed`), or the quick benchmark
+    silently goes back to computing every reference (~70 s more in `make reproduce`)."""
+    seed = json.loads(refs.SEED.read_text())
+    assert seed and {rec["fingerprint"] for rec in seed.values()} == {refs.code_fingerprint()}
