@@ -171,17 +171,18 @@ def _beam_run(family, case, **override):
 
 def _beam_runs():
     """{run name: run}: the main runs of Table 4 (every family and case), then the study's."""
-    runs = {f"{fam}-{case}-main": _beam_run(fam, case) for fam in FE_BEAM["families"] for case in FE_BEAM["cases"]}
+    runs = {f"{f}-{case}-main": _beam_run(f, case) for f in FE_BEAM["families"] for case in FE_BEAM["cases"]}
     study = FE_BEAM["study"]
+    fam = study["variants_family"]
     elastic = [case for case, c in FE_BEAM["cases"].items() if c["law"] == "elastic"]
     for case in elastic:
         for t in study["tangential"]:
             name = t["tangential"] + (f"-{t['mu']:g}" if "mu" in t else "")
-            runs[f"cubic-{case}-{name}"] = _beam_run("cubic", case, tangential=t["tangential"], mu=t.get("mu"))
-        runs[f"cubic-{case}-estar-caption"] = _beam_run("cubic", case, E_star=study["E_star_caption"])
+            runs[f"{fam}-{case}-{name}"] = _beam_run(fam, case, tangential=t["tangential"], mu=t.get("mu"))
+        runs[f"{fam}-{case}-estar-caption"] = _beam_run(fam, case, E_star=study["E_star_caption"])
     for case, c in FE_BEAM["cases"].items():
         if c["law"] == "elastoplastic":
-            runs[f"cubic-{case}-printed-Y"] = _beam_run("cubic", case, Y=study["printed_Y"])
+            runs[f"{fam}-{case}-printed-Y"] = _beam_run(fam, case, Y=study["printed_Y"])
     for fam in FE_BEAM["families"]:
         for nx, nz in study["meshes"]:
             runs[f"{fam}-{elastic[0]}-mesh-{nx}x{nz}"] = _beam_run(fam, elastic[0], spec={"n_x": nx, "n_z": nz})
