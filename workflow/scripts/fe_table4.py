@@ -28,6 +28,7 @@ def run(paths, runs, cfg, paper, expected, out, log):
         for name, run_cfg in runs.items():
             open_points[f"fe-{run_cfg['family']}"][run_cfg["case"]] = attrs[name]["open_points"]
         checks += fe_beam.table4_claims("table4", results, cfg["cases"], open_points, cfg["claims"])
+        checks += fe_beam.equilibrium_checks("table4", attrs, runs, cfg["equilibrium"])
         checks = verify.apply_expectations(checks, yaml.safe_load(Path(expected).read_text()))
         for c in checks:
             logger.info("%s: %s (%s) %s", c.id, c.verdict, c.status, c.detail)

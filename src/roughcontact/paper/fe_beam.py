@@ -24,7 +24,7 @@ from ..fe.contact import statistical_interface
 from ..statistics import SpectralMoments
 from .verify import NOT_REPRODUCED, REPRODUCED, Check, claim_id, numerics_id
 
-__all__ = ["beam_case", "table4_results", "table4_claims", "study_checks", "QUANTITIES"]
+__all__ = ["beam_case", "table4_results", "table4_claims", "equilibrium_checks", "study_checks", "QUANTITIES"]
 
 #: Table 4's quantities and the dataset attributes they come from
 QUANTITIES = {"u_N_centre": "u_N_centre_um", "u_N_end": "u_N_end_um"}
@@ -109,6 +109,24 @@ def table4_claims(scene: str, results: Mapping[str, Mapping[str, np.ndarray]], c
             "In several cases some nodes at the outer edge of the beam were detected not to be in contact (separation occurs).",
             n_open > 0, f"open interface points at the final load, summed over the six cases: {n_open}",
             "an open point has p_N = 0 (beyond the law's light-end tail)"))
+    return out
+
+
+def equilibrium_checks(scene: str, attrs: Mapping[str, Mapping[str, Any]], runs: Mapping[str, Mapping[str, Any]],
+                       cfg: Mapping[str, Any]) -> list[Check]:
+    """One row per run: |integrated interface pressure − applied load| / applied load at the
+    final load (every result records it; Newton's force criterion bounds it)."""
+    out = []
+    for name, run in runs.items():
+        err = float(attrs[name]["equilibrium_error"])
+        ok = err <= cfg["rtol"]
+        out.append(Check(
+            id=numerics_id(scene, f"fe-{run['family']}", "equilibrium", run["case"], "case"), kind="numerics",
+            scene=scene, verdict=REPRODUCED if ok else NOT_REPRODUCED,
+            detail=f"|Σ w p_N − P|/P = {err:.1e} {'≤' if ok else '>'} {cfg['rtol']:.0e}",
+            description="equilibrium: applied load = integrated interface pressure", model=f"fe-{run['family']}",
+            quantity="equilibrium", s=run["case"], value=err, error=err, tolerance=cfg["rtol"],
+            tolerance_why=cfg["why"]))
     return out
 
 
