@@ -151,14 +151,14 @@ def sweep_parts(name):
 # ---------------------------------------------------------------------------------------------
 # finite elements (config: fe)
 # ---------------------------------------------------------------------------------------------
-#: the FE engine and what it stands on; the beam runs also read paper/fe_beam.py (their recipe)
-FE_SOURCES = PHYSICS_SOURCES + library_sources("fe", "paper/fe_beam.py")
+#: the FE engine and what it stands on (the beam runs' recipe is fe/beam.py's beam_case)
+FE_SOURCES = PHYSICS_SOURCES + library_sources("fe")
 FE_REPORT_SOURCES = REPORT_SOURCES + library_sources("paper/fe_beam.py")
 FE_BEAM = config["fe"]["beam"]
 
 
 def _beam_run(family, case, **override):
-    """One FE run of example 9.1 (roughcontact.paper.fe_beam.beam_case reads it)."""
+    """One FE run of example 9.1 (roughcontact.fe.beam.beam_case reads it)."""
     c = FE_BEAM["cases"][case]
     run = {"family": family, "case": case, "m00": c["m00"], "law": c["law"], "psi": FE_BEAM["psi"],
            "E_star": FE_BEAM["E_star"], "tangential": FE_BEAM["tangential"], "mu": None,

@@ -5,7 +5,7 @@ import re
 
 
 rule fe_beam_case:
-    """The runs of one case and element family (roughcontact.paper.fe_beam.beam_case): the main
+    """The runs of one case and element family (roughcontact.fe.beam.beam_case): the main
     run and the study's variants, each as <variant>.nc + .vtu + _interface.vtu in the job's
     directory."""
     input:

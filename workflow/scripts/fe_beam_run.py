@@ -1,13 +1,12 @@
 """The runs of one case and element family of example 9.1 (rule fe_beam_case): each solved by
-roughcontact.paper.fe_beam.beam_case and written as <variant>.nc (with provenance), <variant>.vtu
+roughcontact.fe.beam.beam_case and written as <variant>.nc (with provenance), <variant>.vtu
 and <variant>_interface.vtu in the job's directory."""
 
 from pathlib import Path
 
 from roughcontact import io
-from roughcontact.fe.beam import interface_fields
+from roughcontact.fe.beam import beam_case, interface_fields
 from roughcontact.fe.vtu import write_solution
-from roughcontact.paper.fe_beam import beam_case
 
 
 def run(runs, provenance, out_dir, log):

@@ -73,27 +73,18 @@ def _add_beam(sub, parents) -> None:
 
 
 def _run_beam(args) -> dict[str, Any]:
-    from ..contact import resolve_material
-    from ..fe.beam import BeamSpec, run_beam
-    from ..fe.contact import statistical_interface
+    from ..fe.beam import beam_case
     from ..fe.solver import ConvergenceError
-    from ..statistics import SpectralMoments
 
-    surface = SpectralMoments(*(getattr(args, name) for name in _MOMENTS))
-    spec = BeamSpec(load=args.load, initial_load=args.initial_load, increments=args.increments,
-                    elements=args.elements, n_x=args.n_x, n_z=args.n_z)
-    if args.law == "elastic":
-        if args.psi is not None:
-            raise CLIError("--psi is only used with --law elastoplastic")
-        law = {"E_star": args.E_star}
-    else:
-        if args.psi is None:
-            raise CLIError("--law elastoplastic needs --psi")
-        law = {"material": resolve_material(surface, E_star=args.E_star, psi=args.psi)}
-    material = statistical_interface(surface, spec.seating_pressure, tangential=args.tangential, mu=args.mu, **law)
-    progress = None if args.quiet else _progress
+    moments = {name: getattr(args, name) for name in _MOMENTS}
+    if (args.psi is not None) != (args.law == "elastoplastic"):
+        raise CLIError("--psi is needed with --law elastoplastic and only used there")
+    run = {"family": args.elements, "m00": moments.pop("m00"), "surface": moments, "law": args.law,
+           "psi": args.psi, "E_star": args.E_star, "tangential": args.tangential, "mu": args.mu,
+           "spec": {"load": args.load, "initial_load": args.initial_load, "increments": args.increments,
+                    "n_x": args.n_x, "n_z": args.n_z}}
     try:
-        result = run_beam(spec, material, progress=progress)
+        result = beam_case(run, progress=None if args.quiet else _progress)
     except ConvergenceError as exc:
         raise CLIError(str(exc), code=1) from exc
     if args.vtu is not None:
@@ -103,7 +94,7 @@ def _run_beam(args) -> dict[str, Any]:
         write_solution(args.vtu, result.mesh, result.solution.final.u, interface_fields(result))
     payload = result.summary()
     payload.update(law=args.law, psi=args.psi, tangential=args.tangential, mu=args.mu, E_star=args.E_star,
-                   moments=surface.as_dict(), vtu=str(args.vtu) if args.vtu else None)
+                   moments={"m00": run["m00"], **moments}, vtu=str(args.vtu) if args.vtu else None)
     return payload
 
 

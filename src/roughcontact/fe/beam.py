@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import asdict, dataclass, field
+from typing import Any, Mapping
 
 import numpy as np
 
@@ -39,7 +40,7 @@ from .contact import InterfaceMaterial
 from .mesh import Mesh, box, graded, rigid_base_interface
 from .solver import ContactModel, NewtonOptions, Solution, solve
 
-__all__ = ["BeamSpec", "BeamResult", "beam_mesh", "beam_model", "run_beam", "interface_fields"]
+__all__ = ["BeamSpec", "BeamResult", "beam_mesh", "beam_model", "run_beam", "interface_fields", "beam_case"]
 
 ELEMENT_FAMILIES = ("quadratic", "cubic")
 
@@ -279,3 +280,26 @@ def interface_fields(result: BeamResult) -> dict[str, np.ndarray]:
     fields["u_N_um"] = -fields["closure_mm"] * 1000.0
     fields["x"] = result.solution.model.points.x
     return fields
+
+
+def beam_case(run: Mapping[str, Any], progress=None) -> BeamResult:
+    """Solve one run of example 9.1 described by a plain dict (the workflow's configuration):
+    ``family`` (cubic | quadratic), ``case`` (a Table 4 row, not used here), ``m00`` [µm²],
+    ``law`` (elastic | elastoplastic), ``psi``, ``E_star`` [N/mm²], ``tangential`` (free | stick
+    | coulomb), ``mu``, ``surface`` (m20, m02, m40, m04), ``spec`` (BeamSpec fields); optionally
+    ``Y`` [N/mm²]: an elasto-plastic law with a given yield strength (closure "material", ψ an
+    output) instead of ψ (closure "yield-from-psi")."""
+    from ..contact import resolve_material
+    from ..statistics import SpectralMoments
+    from .contact import statistical_interface
+
+    surface = SpectralMoments(m00=run["m00"], **run["surface"])
+    spec = BeamSpec(elements=run["family"], **run["spec"])
+    if run["law"] == "elastic":
+        law = {"E_star": run["E_star"]}
+    else:
+        by = {"Y": run["Y"]} if run.get("Y") is not None else {"psi": run["psi"]}
+        law = {"material": resolve_material(surface, E_star=run["E_star"], **by)}
+    material = statistical_interface(surface, spec.seating_pressure, tangential=run["tangential"],
+                                     mu=run.get("mu"), **law)
+    return run_beam(spec, material, progress=progress)

@@ -1,14 +1,8 @@
-"""Example 9.1 as the paper reports it: one FE run from its configuration, Table 4 (cells and
-prose claims), Fig. 13's data and the study of what the paper leaves open (tangential
-restraint, E*, mesh). The engine is :mod:`roughcontact.fe.beam`; this module only composes
-runs and judges them (no I/O; the workflow scripts read and write).
-
-A run is a plain dict (workflow/rules/common.smk builds them from config.yaml ``fe.beam``):
-``family`` (cubic | quadratic), ``case`` (Table 4 row), ``m00`` [µm²], ``law``
-(elastic | elastoplastic), ``psi``, ``E_star`` [N/mm²], ``tangential`` (free | stick | coulomb),
-``mu``, ``surface`` (m20, m02, m40, m04), ``spec`` (BeamSpec fields); optionally ``Y``
-[N/mm²]: an elasto-plastic law with the printed yield strength (closure "material", ψ an output)
-instead of ψ (closure "yield-from-psi").
+"""Example 9.1 as the paper reports it: Table 4 (cells, prose claims, equilibrium), the study of
+what the paper leaves open (tangential restraint, E*, printed Y, mesh) and the runs' speed and
+size. The runs themselves are :func:`roughcontact.fe.beam.beam_case` (configured by
+workflow/rules/common.smk from config.yaml ``fe.beam``); this module only judges and reports them
+(no I/O; the workflow scripts read and write), so editing it never re-runs a computation.
 """
 
 from __future__ import annotations
@@ -18,30 +12,12 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from ..contact import resolve_material
-from ..fe.beam import BeamResult, BeamSpec, run_beam
-from ..fe.contact import statistical_interface
-from ..statistics import SpectralMoments
 from .verify import NOT_REPRODUCED, REPRODUCED, Check, claim_id, numerics_id
 
-__all__ = ["beam_case", "table4_results", "table4_claims", "equilibrium_checks", "study_checks", "QUANTITIES"]
+__all__ = ["table4_results", "table4_claims", "equilibrium_checks", "study_checks", "QUANTITIES"]
 
 #: Table 4's quantities and the dataset attributes they come from
 QUANTITIES = {"u_N_centre": "u_N_centre_um", "u_N_end": "u_N_end_um"}
-
-
-def beam_case(run: Mapping[str, Any], progress=None) -> BeamResult:
-    """Solve one configured run of example 9.1."""
-    surface = SpectralMoments(m00=run["m00"], **run["surface"])
-    spec = BeamSpec(elements=run["family"], **run["spec"])
-    if run["law"] == "elastic":
-        law = {"E_star": run["E_star"]}
-    else:
-        by = {"Y": run["Y"]} if run.get("Y") is not None else {"psi": run["psi"]}
-        law = {"material": resolve_material(surface, E_star=run["E_star"], **by)}
-    material = statistical_interface(surface, spec.seating_pressure, tangential=run["tangential"],
-                                     mu=run.get("mu"), **law)
-    return run_beam(spec, material, progress=progress)
 
 
 def table4_results(attrs: Mapping[str, Mapping[str, Any]], runs: Mapping[str, Mapping[str, Any]],
