@@ -16,6 +16,8 @@ PY     := $(BIN)/python
 # Python 3.11 if present, else python3 (checked to be >= 3.11 below).
 PYTHON ?= $(shell command -v python3.11 2>/dev/null || command -v python3 2>/dev/null)
 CORES  ?= all
+# pytest workers (pytest-xdist): the tests are independent; "auto" = one per core
+WORKERS ?= auto
 SNAKEMAKE := $(BIN)/snakemake --workflow-profile workflow/profiles/default --cores $(CORES)
 # Re-install only when the package metadata changes (the install is editable: source edits
 # need no re-install).
@@ -54,13 +56,13 @@ bench-fe: $(STAMP)
 
 # pyproject.toml deselects the mpmath- and slow-marked tests by default ("fast by default")
 test: $(STAMP)
-	$(PY) -m pytest
+	$(PY) -m pytest -n $(WORKERS)
 
 test-slow: $(STAMP)
-	$(PY) -m pytest -m "mpmath or slow"
+	$(PY) -m pytest -n $(WORKERS) -m "mpmath or slow"
 
 test-all: $(STAMP)
-	$(PY) -m pytest -m ""
+	$(PY) -m pytest -n $(WORKERS) -m ""
 
 verify: $(STAMP)
 	$(SNAKEMAKE) verify
