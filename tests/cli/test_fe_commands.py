@@ -68,3 +68,47 @@ def test_no_convergence_is_exit_1_naming_the_increment(capsys, monkeypatch):
     code, out, err = run(capsys, "fe", "beam", *SURFACE, *COARSE, "--quiet")
     assert code == 1 and out == ""
     assert "increment" in err and "residual" in err and len(err.splitlines()) == 1
+
+
+PUNCH_POINT_FIELDS = ("x_mm", "y_mm", "slip_x_um", "slip_y_um", "t_x", "t_y", "p_N", "status", "utilisation")
+
+
+def test_punch_json_has_the_documented_fields(capsys, tmp_path):
+    """The paper's mesh (81 points), two increments each way to keep the test short."""
+    vtu = tmp_path / "punch.vtu"
+    code, out, err = run(capsys, "fe", "punch", "--case", "b", "--increments", "2", "--json", "--vtu", str(vtu))
+    assert code == 0
+    data = json.loads(out)
+    for key in ("dissipation_quarter_Nmm", "dissipation_full_Nmm", "frictionless_bound_quarter_Nmm",
+                "frictionless_bound_full_Nmm", "newton_iterations", "points", "units"):
+        assert key in data
+    assert data["interface_points"] == 81 and len(data["newton_iterations"]) == 5
+    assert data["dissipation_full_Nmm"] == pytest.approx(4.0 * data["dissipation_quarter_Nmm"], rel=1e-14)
+    assert 0.0 <= data["dissipation_quarter_Nmm"] <= data["frictionless_bound_quarter_Nmm"]
+    pts = data["points"]
+    assert all(len(pts[k]) == 81 for k in PUNCH_POINT_FIELDS)
+    assert set(pts["status"]) <= {"stick", "slip", "open"}
+    # the contact points cover the quarter punch's face [0, 10]² mm
+    assert max(pts["x_mm"]) == max(pts["y_mm"]) == 10.0
+    assert "increment 5/5" in err
+    points = meshio.read(tmp_path / "punch_interface.vtu")
+    np.testing.assert_allclose(np.sort(points.point_data["p_N"]), np.sort(pts["p_N"]), rtol=1e-12)
+    assert meshio.read(vtu).point_data["displacement_mm"].shape[1] == 3
+
+
+def test_punch_text_lists_every_point(capsys):
+    code, out, _ = run(capsys, "fe", "punch", "--case", "a", "--increments", "1", "--quiet")
+    assert code == 0 and "frictionless bound" in out
+    assert sum(line.rstrip().endswith(("stick", "slip", "open")) for line in out.splitlines()) == 81
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["--increments", "0"], "increments"),
+    (["--load", "-1"], "load"),
+    (["--load-patch", "25"], "load_patch"),
+    (["--seating-pressure", "0"], "seating_pressure"),
+    (["--m00", "nan"], "m00"),
+])
+def test_punch_bad_input_is_exit_2_with_one_line(capsys, argv, message):
+    code, out, err = run(capsys, "fe", "punch", "--case", "b", *argv, "--quiet")
+    assert code == 2 and out == "" and len(err.splitlines()) == 1 and message in err

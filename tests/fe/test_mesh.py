@@ -8,7 +8,7 @@ import pytest
 from roughcontact.fe.element import HEX20, HEX20_NODES, HEX21, HEX28, QUAD8, QUAD9, QUAD16, Element
 from roughcontact.fe.interface_element import INTERFACE18, INTERFACE32, face_frame
 from roughcontact.fe.mesh import (
-    LATERAL28, Mesh, box, graded, interface_between, local_face, merge, rigid_base_interface,
+    LATERAL28, Mesh, box, dofs, graded, interface_between, local_face, merge, rigid_base_interface,
 )
 from roughcontact.fe.quadrature import tensor_rule
 
@@ -290,8 +290,9 @@ def test_interface_between_pairs_coincide(family):
     assert np.array_equal(xa, xb)
     assert np.allclose(n, (0, 0, 1), atol=1e-12)  # from the foundation (A) up into the punch (B)
     assert np.all(block.side("A") < lower.n_nodes) and np.all(block.side("B") >= lower.n_nodes)
-    with pytest.raises(ValueError):  # the whole top face does not match the punch's face
-        interface_between(m, "foundation.contact", "punch.contact")
+    # side A may be larger: the whole top face gives the same elements (A's other faces stay free)
+    whole = interface_between(m, "foundation.contact", "punch.contact").interfaces[0]
+    assert np.array_equal(whole.cells, block.cells)
 
 
 @pytest.mark.parametrize("shift, upper_n", [(0.25, 2), (0.0, 4)])
@@ -306,8 +307,66 @@ def test_interface_between_rejects_non_matching_meshes(shift, upper_n):
         interface_between(m, "zone", "punch.contact")
 
 
+def centred_punch(family, x=(2.0, 3.5), y=(1.0, 2.0, 3.5)):
+    """A foundation (contact on top, 4 × 4 faces) and a smaller punch on the middle of it whose
+    x/y edges are some of the foundation's: the punch does not touch the foundation's edges."""
+    xy = np.array([0.0, 1.0, 2.0, 3.5, 6.0])
+    lower = box(xy, xy, graded(-5, 0, 2, 0.3), contact_face="top", family=family, name="foundation")
+    upper = box(x, y, graded(0, 2, 2, 3.0), contact_face="bottom", family=family, name="punch")
+    return merge(lower, upper), lower
+
+
+@pytest.mark.parametrize("family", ["quadratic", "cubic"])
+def test_interface_between_pairs_a_partial_interface(family):
+    """Side A (the whole top face, 16 faces) is larger than B (2 faces in the middle): each B
+    face gets the A face at its place, node by node; A's other 14 faces stay free."""
+    m, lower = centred_punch(family)
+    out = interface_between(m, "foundation.contact", "punch.contact")
+    (block,) = out.interfaces
+    assert len(block.cells) == 2 and block.element is {"quadratic": INTERFACE18, "cubic": INTERFACE32}[family]
+    n, xa, xb = interface_normals(out, block)
+    assert np.array_equal(xa, xb) and np.allclose(n, (0, 0, 1), atol=1e-12)
+    assert np.all(block.side("A") < lower.n_nodes) and np.all(block.side("B") >= lower.n_nodes)
+    assert set(np.unique(block.side("B"))) == set(np.unique(m.face_sets["punch.contact"].face_nodes))
+    top = m.face_sets["foundation.contact"].face_nodes
+    assert all(any(np.array_equal(a, f) for f in top) for a in block.side("A"))  # A's faces as they are
+    x = m.points[block.side("A")]
+    assert np.allclose(x[..., 0].min(), 2.0) and np.allclose(x[..., 0].max(), 3.5)
+    assert np.allclose(x[..., 1].min(), 1.0) and np.allclose(x[..., 1].max(), 3.5)
+
+
+@pytest.mark.parametrize("x, y, match", [
+    ((2.0, 3.0), (1.0, 2.0), "coincident"),  # an edge of B at x = 3 between A's nodes: no partner
+    ((2.0, 3.5, 6.5), (1.0, 2.0), "coincident"),  # B's last face sticks out beyond A
+    ((0.0, 2.0), (1.0, 2.0), "coincide one to one"),  # B's 9 nodes sit on A's nodes, its face does not
+])
+def test_interface_between_rejects_a_b_face_without_partner(x, y, match):
+    m, _ = centred_punch("quadratic", x, y)
+    with pytest.raises(ValueError, match=match):
+        interface_between(m, "foundation.contact", "punch.contact")
+
+
+def test_interface_between_rejects_b_larger_than_a_and_other_misuse():
+    m, _ = centred_punch("quadratic")
+    with pytest.raises(ValueError, match="face type or count"):  # B's 2 faces cannot hold A's 16
+        interface_between(m, "punch.contact", "foundation.contact")
+    with pytest.raises(ValueError, match="distinct nodes"):  # one body against itself
+        interface_between(m, "foundation.contact", "foundation.contact")
+    with pytest.raises(ValueError, match="face type"):  # quad9 against quad16
+        mixed = merge(box([0.0, 1.0], [0.0, 1.0], [-1.0, 0.0], contact_face="top", name="f"),
+                      box([0.0, 1.0], [0.0, 1.0], [0.0, 1.0], contact_face="bottom", family="cubic", name="p"))
+        interface_between(mixed, "f.contact", "p.contact")
+    with pytest.raises(ValueError, match="no face set"):
+        interface_between(m, "foundation.contact", "nothing")
+
+
 def test_mesh_validates_cells():
     m = box([0, 1], [0, 1], [0, 1])
     with pytest.raises(ValueError):
         Mesh(m.points[:5], m.blocks)
     assert isinstance(LATERAL28, Element) and LATERAL28.n_nodes == 9
+
+
+def test_dofs_are_node_major_three_per_node():
+    np.testing.assert_array_equal(dofs([0, 5], (0, 2)), [0, 2, 15, 17])
+    np.testing.assert_array_equal(dofs(np.array([4]), (1,)), [13])

@@ -129,7 +129,8 @@ def test_linear_solvers_solve_the_tangent_system(kind, tangential, materials):
     r, resp = residual(model, 1.0, u, sol.final.u, sol.final.state)
     if tangential == "coulomb":
         assert np.any(resp.status == fr.SLIP) and not np.allclose(resp.tangent, np.swapaxes(resp.tangent, 1, 2))
-    du = solver_module._linear_solver(model, kind)(model.points, resp.tangent, r)
+    # the residual at (u, level 1): the condensed solver reads the bulk part of r off (u, level)
+    du = solver_module._linear_solver(model, kind)(model.points, resp.tangent, r, u[free], 1.0)
     Kt = (model.stiffness + interface_tangent(model.points, resp.tangent)).tocsr()[free][:, free]
     ref = spla.spsolve(Kt.tocsc(), r)
     # backward-stable solves of a system with cond(K_t) ≈ 1e3 (measured): ~1e-13; measured 3e-15

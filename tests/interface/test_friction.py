@@ -614,3 +614,22 @@ def test_table_kernel_matches_reference_twin(law):
         du[2] = rng.uniform(-0.5, 0.5) * dun if i % 8 != 7 else law.u_open - s[fr.U_N] - 0.01
         statuses.add(assert_kernel_matches_twin(model, s, du, law, d_scale=1.0))
     assert statuses == {fr.STICK, fr.SLIP, fr.OPEN}
+
+
+@pytest.mark.parametrize("name", list(MODELS))
+def test_utilisation_is_one_on_slip_below_one_in_stick(name):
+    """utilisation = (f + p)/p: exactly 1 where the update slipped, < 1 where it stuck, 0 open."""
+    model = MODELS[name]
+    s = fr.initial_state(3, u_N=UN0, k_N=KN)
+    du = np.array([[0.3 * DLIM, 0.0, 0.0], [50 * DLIM, -20 * DLIM, 0.0], [0.0, 0.0, -2 * UN0]])
+    r = upd(model, s, du)
+    assert list(r.status) == [fr.STICK, fr.SLIP, fr.OPEN]
+    u = fr.utilisation(model, r.state)
+    assert 0.0 < u[0] < 1.0
+    assert u[1] == pytest.approx(1.0, abs=1e-12)
+    assert u[2] == 0.0
+
+
+def test_utilisation_needs_a_friction_limit():
+    with pytest.raises(TypeError, match="friction limit"):
+        fr.utilisation(fr.Frictionless(), fr.initial_state(u_N=UN0, k_N=KN))

@@ -217,12 +217,16 @@ def fe_targets():
     """The user-facing files of the FE scenes."""
     return [f"paper_figures/{name}" for name in ("table4.md", "table4.csv", "fig13.png", "fig13.csv",
                                                  "fe_beam_study.md", "fe_beam_study.csv", "fig10.png",
+                                                 "table5.md", "table5.csv", "fe_punch_readings.md",
+                                                 "fe_punch_readings.csv", "fig14.png", "fig15.png",
+                                                 "fig18.png", "fig18.csv", "fig19.png", "fig19.csv",
                                                  "fe_benchmark.md")]
 
 
 FE_TITLES = {
     "table4": "Table 4: interface deflections of the beam on a rigid base (example 9.1)",
     "fe_beam_study": "Example 9.1: tangential restraint, E* and mesh convergence",
+    "table5": "Table 5 and section 9.2: the punch with orthotropic hardening friction (example 9.2)",
 }
 
 
@@ -232,4 +236,61 @@ def drawing_targets():
 
 
 def fe_checks():
-    return [f"results/verify/{name}.checks.csv" for name in ("table4", "fe_beam_study")]
+    return [f"results/verify/{name}.checks.csv" for name in ("table4", "fe_beam_study", "table5")]
+
+
+FE_PUNCH = config["fe"]["punch"]
+#: fields of a reading or variant that leave the frictionless problem unchanged (its bound is
+#: then the one of the run's base)
+_SAME_FRICTIONLESS = {"tangential_form", "increments", "unload_increments"}
+
+
+def _punch_run(family, case, *overrides):
+    """One run of example 9.2 (roughcontact.fe.punch.punch_case reads it)."""
+    main = copy.deepcopy(FE_PUNCH["main"])
+    run = {"case": case, "m00": FE_PUNCH["m00"], "surface": dict(FE_PUNCH["surface"]), "law": FE_PUNCH["law"],
+           "psi": FE_PUNCH["psi"], **{k: v for k, v in main.items() if k != "geometry"},
+           "geometry": {"family": family, **main.get("geometry", {})}}
+    for over in overrides:
+        run.update({k: v for k, v in over.items() if k != "geometry"})
+        run["geometry"].update(over.get("geometry", {}))
+    return run
+
+
+def _punch_groups():
+    """{job: {run name: run}}: per element family and reading, cases a, b, c and the frictionless
+    problem (where the reading changes it); the sensitivity's variants (case b, 21-node). Each
+    frictional run names the frictionless run of its bound (``bound``)."""
+    groups = {}
+    for fam in FE_PUNCH["families"]:
+        for reading, over in [("main", {})] + list(FE_PUNCH["readings"].items()):
+            g = f"{fam}-{reading}"
+            own = reading == "main" or bool(set(over) - _SAME_FRICTIONLESS)
+            bound = f"{g}-frictionless" if own else f"{fam}-main-frictionless"
+            groups[g] = {f"{g}-{c}": {**_punch_run(fam, c, over), "bound": bound} for c in "abc"}
+            if own:
+                groups[g][f"{g}-frictionless"] = _punch_run(fam, "frictionless", over)
+    sens = FE_PUNCH["sensitivity"]
+    base = FE_PUNCH["readings"][sens["reading"]]
+    for variant, over in sens["variants"].items():
+        g = f"quadratic-sens-{variant}"
+        own = bool(set(over) - _SAME_FRICTIONLESS)
+        bound = f"{g}-frictionless" if own else f"quadratic-{sens['reading']}-frictionless"
+        groups[g] = {f"{g}-b": {**_punch_run("quadratic", "b", base, over), "bound": bound}}
+        if own:
+            groups[g][f"{g}-frictionless"] = _punch_run("quadratic", "frictionless", base, over)
+    return groups
+
+
+FE_PUNCH_GROUPS = _punch_groups()
+FE_PUNCH_RUNS = {name: run for group in FE_PUNCH_GROUPS.values() for name, run in group.items()}
+
+
+def fe_punch_paths(names):
+    """{run name: its netCDF file} (results/fe/punch/<job>/<case>.nc)."""
+    out = {}
+    for group, runs in FE_PUNCH_GROUPS.items():
+        for name in runs:
+            if name in names:
+                out[name] = f"results/fe/punch/{group}/{name[len(group) + 1:]}.nc"
+    return out

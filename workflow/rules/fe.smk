@@ -128,18 +128,145 @@ rule fe_beam:
 
 
 rule fe_benchmark:
-    """Speed and size of every beam run (dofs, points, iterations, wall time, peak memory)."""
+    """Speed and size of every FE run, beam and punch (dofs, points, iterations, wall time, peak
+    memory)."""
     input:
-        runs=fe_beam_dirs(FE_BEAM_RUNS),
-        tsv=[f"results/benchmarks/fe/beam/{group}.tsv" for group in FE_BEAM_GROUPS],
-        code=FE_REPORT_SOURCES,
+        runs=fe_beam_dirs(FE_BEAM_RUNS) + [f"results/fe/punch/{g}" for g in FE_PUNCH_GROUPS],
+        tsv=[f"results/benchmarks/fe/beam/{group}.tsv" for group in FE_BEAM_GROUPS]
+        + [f"results/benchmarks/fe/punch/{group}.tsv" for group in FE_PUNCH_GROUPS],
+        code=REPORT_SOURCES + library_sources("paper/fe_speed.py"),
     output:
         md="paper_figures/fe_benchmark.md",
-        json="results/benchmarks/fe_beam.json",
+        json="results/benchmarks/fe_runs.json",
     log:
         "logs/fe/fe_benchmark.log",
     params:
-        paths=fe_beam_paths(FE_BEAM_RUNS),
+        examples={
+            "Example 9.1, the beam": {
+                "paths": fe_beam_paths(FE_BEAM_RUNS),
+                "tsv": [f"results/benchmarks/fe/beam/{group}.tsv" for group in FE_BEAM_GROUPS],
+                "main": [n for n in FE_BEAM_RUNS if n.endswith("-main")],
+                "goal": 30.0,
+                "what": "one per case and element family: the main run and its study variants",
+            },
+            "Example 9.2, the punch": {
+                "paths": fe_punch_paths(FE_PUNCH_RUNS),
+                "tsv": [f"results/benchmarks/fe/punch/{group}.tsv" for group in FE_PUNCH_GROUPS],
+                "main": [n for n in FE_PUNCH_RUNS if "-main-" in n and not n.endswith("-frictionless")],
+                "goal": 60.0,
+                "what": "one per element family and reading: cases a, b, c and the frictionless problem",
+            },
+        },
     localrule: True
     script:
         "../scripts/fe_benchmark.py"
+
+
+# ---------------------------------------------------------------------------------------------
+# example 9.2: the flat punch (config: fe.punch)
+# ---------------------------------------------------------------------------------------------
+rule fe_punch_case:
+    """The runs of one element family and reading (or study variant) of example 9.2
+    (roughcontact.fe.punch.punch_case): cases a, b, c and the frictionless problem of the bound,
+    each as <case>.nc (the whole load history) + .vtu + _interface.vtu (maximum load)."""
+    input:
+        lib=FE_SOURCES,
+        kernels=KERNELS_WARM,
+    output:
+        directory("results/fe/punch/{group}"),
+    log:
+        "logs/fe/punch/{group}.log",
+    benchmark:
+        "results/benchmarks/fe/punch/{group}.tsv"
+    wildcard_constraints:
+        group="|".join(re.escape(name) for name in FE_PUNCH_GROUPS),
+    params:
+        runs=lambda w: FE_PUNCH_GROUPS[w.group],
+        provenance=lambda w: {"group": w.group, "fe_punch": FE_PUNCH_GROUPS[w.group], "units": dict(config["units"])},
+    threads: 1
+    script:
+        "../scripts/fe_punch_run.py"
+
+
+rule fe_table5:
+    """Table 5 (main reading, both element families) with its cell checks, the prose of 9.2 as
+    checks (main and sensitivity readings), and Table 5 under every reading with the bound."""
+    input:
+        runs=[f"results/fe/punch/{g}" for g in FE_PUNCH_GROUPS],
+        paper="config/paper_values.yaml",
+        expected="config/expected_verdicts.yaml",
+        code=FE_REPORT_SOURCES + library_sources("paper/fe_punch.py"),
+    output:
+        md="paper_figures/table5.md",
+        csv="paper_figures/table5.csv",
+        readings_md="paper_figures/fe_punch_readings.md",
+        readings_csv="paper_figures/fe_punch_readings.csv",
+        checks="results/verify/table5.checks.csv",
+    log:
+        "logs/fe/table5.log",
+    params:
+        runs=FE_PUNCH_RUNS,
+        paths=fe_punch_paths(FE_PUNCH_RUNS),
+        cfg=FE_PUNCH,
+    localrule: True
+    script:
+        "../scripts/fe_table5.py"
+
+
+rule fe_punch_slips:
+    """Figs 18 (21-node elements) and 19 (28-node): directions of the plastic slips at the contact
+    points for cases a, b, c at the maximum load, under the main reading and the sensitivity's."""
+    input:
+        runs=[f"results/fe/punch/{g}" for g in FE_PUNCH_GROUPS if not g.split("-", 1)[1].startswith("sens-")],
+        code=FE_REPORT_SOURCES + library_sources("paper/fe_punch.py"),
+    output:
+        png="paper_figures/{fig}.png",
+        csv="paper_figures/{fig}.csv",
+    log:
+        "logs/fe/{fig}.log",
+    wildcard_constraints:
+        fig="fig18|fig19",
+    params:
+        family=lambda w: {"fig18": "quadratic", "fig19": "cubic"}[w.fig],
+        readings=["main", FE_PUNCH["sensitivity"]["reading"]],
+        paths=fe_punch_paths(FE_PUNCH_RUNS),
+    localrule: True
+    script:
+        "../scripts/fe_punch_slips.py"
+
+
+rule fe_punch_mesh_figure:
+    """Figs 14 (21-node) and 15 (28-node): the quarter punch on the foundation, from the engine's mesh."""
+    input:
+        code=library_sources("fe", "paper/drawings.py", "paper/plots.py"),
+    output:
+        png="paper_figures/{fig}.png",
+    log:
+        "logs/fe/{fig}.log",
+    wildcard_constraints:
+        fig="fig14|fig15",
+    params:
+        geometry=lambda w: dict(FE_PUNCH["main"].get("geometry", {}),
+                                family={"fig14": "quadratic", "fig15": "cubic"}[w.fig]),
+    localrule: True
+    script:
+        "../scripts/fe_punch_mesh_figure.py"
+
+
+for _fig in ("table5", "fig14", "fig15", "fig18", "fig19"):
+
+    rule:
+        name:
+            _fig
+        localrule: True
+        input:
+            [f"paper_figures/{_fig}.{ext}" for ext in (("md", "csv") if _fig == "table5" else ("png",))],
+
+
+rule fe_punch:
+    """Every output of example 9.2."""
+    localrule: True
+    input:
+        [f"results/fe/punch/{g}" for g in FE_PUNCH_GROUPS],
+        "paper_figures/table5.md", "paper_figures/fe_punch_readings.md",
+        "paper_figures/fig14.png", "paper_figures/fig15.png", "paper_figures/fig18.png", "paper_figures/fig19.png",

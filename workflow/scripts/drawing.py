@@ -1,22 +1,10 @@
 """Draw an element figure of section 9 (Figs 11, 12, 16, 17) from the engine's own element
 definitions: the PNG and the node table (label, local index, reference coordinates, kind) as CSV."""
 
-import csv
-import io as _io
-
 from roughcontact import io
 from roughcontact.fe.element import ELEMENTS
 from roughcontact.fe.interface_element import INTERFACES
-from roughcontact.paper import drawings, plots
-
-
-def table_csv(rows):
-    """The node table as CSV (one row per node, columns as in drawings.node_table)."""
-    buf = _io.StringIO()
-    w = csv.DictWriter(buf, fieldnames=list(rows[0]), lineterminator="\n")
-    w.writeheader()
-    w.writerows({k: repr(v) if isinstance(v, float) else v for k, v in row.items()} for row in rows)
-    return buf.getvalue()
+from roughcontact.paper import drawings, plots, report
 
 
 def draw(element_name, title):
@@ -29,7 +17,7 @@ def draw(element_name, title):
         fig = drawings.element_figure(element, title=title)
     else:
         raise ValueError(f"unknown element {element_name!r} (have {sorted(ELEMENTS) + sorted(INTERFACES)})")
-    return fig, table_csv(drawings.node_table(element))
+    return fig, report.render_rows_csv(drawings.node_table(element))
 
 
 def run(element_name, title, out, log):

@@ -1,14 +1,12 @@
 """The study of example 9.1 (rule fe_beam_study): tangential restraint, E*, mesh convergence;
 paper_figures/fe_beam_study.md/.csv and results/verify/fe_beam_study.checks.csv."""
 
-import csv
-import io as _io
 from pathlib import Path
 
 import yaml
 
 from roughcontact import io
-from roughcontact.paper import fe_beam, verify
+from roughcontact.paper import fe_beam, report, verify
 
 
 def run(paths, runs, cfg, expected, out, log):
@@ -29,11 +27,7 @@ def run(paths, runs, cfg, expected, out, log):
         prov = io.read_provenance(next(iter(data.values())))
         shown = {"roughcontact": prov.get("roughcontact_version"), "commit": str(prov.get("git_commit", "unknown"))[:12]}
         io.write_text(out["md"], fe_beam.render_study_markdown(rows, checks, shown))
-        buf = _io.StringIO()
-        w = csv.DictWriter(buf, fieldnames=list(rows[0]), lineterminator="\n")
-        w.writeheader()
-        w.writerows(rows)
-        io.write_text(out["csv"], buf.getvalue())
+        io.write_text(out["csv"], report.render_rows_csv(rows))
         io.write_text(out["checks"], verify.checks_to_csv(checks))
 
 

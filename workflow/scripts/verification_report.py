@@ -24,7 +24,7 @@ def _fe_section(path):
     """The FE speed-and-size report's job table and summary (the per-run table stays in its file)."""
     lines = Path(path).read_text().splitlines()
     start = next(i for i, line in enumerate(lines) if line.startswith("| job"))
-    return ("Measured by the workflow's FE jobs (`snakemake fe_beam`; every run's dofs, interface points, "
+    return ("Measured by the workflow's FE jobs (`snakemake fe_beam fe_punch`; every run's dofs, interface points, "
             "Newton iterations and solve time in [fe_benchmark.md](fe_benchmark.md)).\n\n"
             + "\n".join(lines[start:]).strip() + "\n")
 

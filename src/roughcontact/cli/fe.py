@@ -1,9 +1,15 @@
-"""The finite-element commands of ``roughcontact``: ``fe beam`` (example 9.1).
+"""The finite-element commands of ``roughcontact``: ``fe beam`` (example 9.1) and ``fe punch``
+(example 9.2).
 
     roughcontact fe beam --m00 M --m20 M --m02 M --m40 M --m04 M [--E-star E]
         [--law elastic|elastoplastic --psi PSI] [--load 1962] [--initial-load 4.9]
         [--tangential free|stick|coulomb] [--mu MU] [--elements quadratic|cubic]
         [--increments 16] [--n-x 25] [--n-z 6] [--vtu FILE] [--quiet] [--json]
+    roughcontact fe punch --case a|b|c [--m00 0.625 ...] [--elements quadratic|cubic]
+        [--load 1000 (N, whole punch)] [--load-on whole|quarter] [--load-patch SIDE]
+        [--seating-pressure P0] [--E-star E] [--law elastic|elastoplastic] [--psi 0.35]
+        [--tangential incremental|incremental-start|secant] [--increments 16] [--vtu FILE]
+        [--quiet] [--json]
 
 Moments in µm (the paper's surfaces), stresses in N/mm², lengths of the beam in mm. Progress
 (one line per load increment) goes to stderr unless --quiet. Exit codes as the other commands;
@@ -15,6 +21,8 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 from typing import Any
+
+import numpy as np
 
 from . import CLIError, _MOMENTS, _real
 
@@ -32,6 +40,7 @@ def add_commands(sub, parents) -> None:
                         description="3D finite-element contact through the statistical interface law.")
     fe_sub = fe.add_subparsers(dest="example", metavar="EXAMPLE", required=True)
     _add_beam(fe_sub, parents)
+    _add_punch(fe_sub, parents[1:])
 
 
 def _int(text: str) -> int:
@@ -96,6 +105,105 @@ def _run_beam(args) -> dict[str, Any]:
     payload.update(law=args.law, psi=args.psi, tangential=args.tangential, mu=args.mu, E_star=args.E_star,
                    moments={"m00": run["m00"], **moments}, vtu=str(args.vtu) if args.vtu else None)
     return payload
+
+
+#: the Fig. 18 surface (µm), the punch's default
+PUNCH_SURFACE = {"m00": 0.625, "m20": 8e-5, "m02": 8e-4, "m40": 1.04e-6, "m04": 1.04e-4}
+#: the friction update's status codes (roughcontact.interface.friction STICK, SLIP, OPEN) by name
+STATUS_NAMES = ("stick", "slip", "open")
+#: "incremental" is the (93) form with k_T at the end of the increment
+TANGENTIAL_FORMS = {"incremental": "incremental-end", "incremental-start": "incremental-start", "secant": "secant"}
+
+
+def _add_punch(sub, parents) -> None:
+    p = sub.add_parser(
+        "punch", parents=parents, help="flat punch on an elastic foundation with orthotropic friction (example 9.2)",
+        description="Punch 20 x 20 x 10 mm on a foundation 100 x 100 x 50 mm (E = 200 GPa, nu = 0.25; quarter "
+        "model) through the statistical interface with the orthotropic hardening friction of Fig. 18's case; "
+        "seated, loaded on a centred patch of the punch top in --increments steps, unloaded likewise. Prints "
+        "the dissipation D, its frictionless upper bound and the state of every contact point at the maximum load.",
+    )
+    p.add_argument("--case", choices=("a", "b", "c"), required=True, help="friction parameters of Fig. 18 (a, b, c)")
+    for name, value in PUNCH_SURFACE.items():
+        p.add_argument(f"--{name}", type=_real, default=value, metavar="M", help=f"{name} (default {value:g}, um units)")
+    p.add_argument("--elements", choices=FAMILIES, default="quadratic",
+                   help="21-node + 18-node (quadratic, 81 points) or 28-node + 32-node (cubic, 100 points)")
+    p.add_argument("--load", type=_real, default=1000.0, metavar="N", help="maximum patch load [N] (1000)")
+    p.add_argument("--load-on", dest="load_on", choices=("whole", "quarter"), default="whole",
+                   help="the load acts on the whole punch (default) or on the quarter model")
+    p.add_argument("--load-patch", dest="load_patch", type=_real, default=None, metavar="SIDE",
+                   help="side of the centred loaded square on the whole punch [mm] (default: the punch's central element)")
+    p.add_argument("--seating-pressure", dest="seating_pressure", type=_real, default=0.1, metavar="P0",
+                   help="seating pressure on the punch top [N/mm^2] (0.1): the reference state")
+    p.add_argument("--E-star", dest="E_star", type=_real, default=None, metavar="E",
+                   help="effective modulus [N/mm^2] (default: two like bodies, E/(2(1-nu^2)), eq. (42))")
+    p.add_argument("--law", choices=LAWS, default="elastoplastic", help="normal law (default elastoplastic)")
+    p.add_argument("--psi", type=_real, default=0.35, metavar="PSI", help="plasticity index (0.35)")
+    p.add_argument("--tangential", choices=tuple(TANGENTIAL_FORMS), default="incremental",
+                   help="how k_T enters (93): incremental (k_T at the end of the increment), incremental-start, "
+                   "or secant (a total elastic law)")
+    p.add_argument("--increments", type=_int, default=16, metavar="N", help="loading and unloading increments (16)")
+    p.add_argument("--vtu", type=Path, default=None, metavar="FILE",
+                   help="write both bodies with displacements (maximum load) to FILE and the contact points "
+                   "to FILE's stem + '_interface.vtu'")
+    p.add_argument("--quiet", action="store_true", help="no progress lines on stderr")
+    p.set_defaults(func=_run_punch, render=_render_punch)
+
+
+def _run_punch(args) -> dict[str, Any]:
+    from ..fe.punch import dissipation, frictionless_bound, mu_max, punch_case, summary_of
+    from ..fe.solver import ConvergenceError
+
+    surface = {name: getattr(args, name) for name in ("m20", "m02", "m40", "m04")}
+    geometry = {"family": args.elements, **({"load_patch": args.load_patch} if args.load_patch else {})}
+    run = {"case": args.case, "m00": args.m00, "surface": surface, "law": args.law, "psi": args.psi,
+           "E_star": args.E_star, "tangential_form": TANGENTIAL_FORMS[args.tangential], "load": args.load,
+           "load_on": args.load_on, "seating_pressure": args.seating_pressure, "increments": args.increments,
+           "unload_increments": args.increments, "geometry": geometry}
+    progress = None if args.quiet else _progress
+    try:
+        result = punch_case(run, progress)
+        free = punch_case({**run, "case": "frictionless"}, progress)
+    except ConvergenceError as exc:
+        raise CLIError(str(exc), code=1) from exc
+    mu = mu_max(args.case)
+    points = result.slip_directions()
+    if args.vtu is not None:
+        result.write_vtu(args.vtu)
+    summary = summary_of(result)
+    return {
+        "dissipation_quarter_Nmm": dissipation(result, whole=False),
+        "dissipation_full_Nmm": dissipation(result, whole=True),
+        "dissipation_work_full_Nmm": dissipation(result, weight="work", whole=True),
+        "frictionless_bound_quarter_Nmm": frictionless_bound(result, free, mu, whole=False),
+        "frictionless_bound_full_Nmm": frictionless_bound(result, free, mu, whole=True),
+        "newton_iterations": summary["newton_iterations"],
+        "equilibrium_error": summary["equilibrium_error_max_load"],
+        "dofs": summary["dofs"], "interface_points": summary["interface_points"], "seconds": summary["seconds"],
+        "points": {**{k: np.asarray(v).tolist() for k, v in points.items()},
+                   "status": [STATUS_NAMES[int(v)] for v in points["status"]]},
+        "case": args.case, "elements": args.elements, "spec": summary["spec"],
+        "units": {"dissipation": "N mm", "x_mm": "mm", "slip_um": "um (plastic slip at the maximum load)",
+                  "t_x, t_y, p_N": "N/mm^2", "utilisation": "1 (|t_T|/(mu p_N) on the limit (91); 1 slip)",
+                  "seconds": "s"},
+    }
+
+
+def _render_punch(payload: dict[str, Any]) -> str:
+    pts = payload["points"]
+    lines = [
+        f"punch on foundation, case {payload['case']}, {payload['elements']} elements: "
+        f"{payload['interface_points']} contact points, {payload['dofs']} dofs, {payload['seconds']:.1f} s",
+        f"D = {payload['dissipation_full_Nmm']:.5g} N mm (whole punch; quarter {payload['dissipation_quarter_Nmm']:.5g})"
+        f"   frictionless bound {payload['frictionless_bound_full_Nmm']:.5g} N mm"
+        f"   dissipated work {payload['dissipation_work_full_Nmm']:.5g} N mm",
+        f"{'x [mm]':>8}{'y [mm]':>8}{'u_x^p [um]':>12}{'u_y^p [um]':>12}{'t_x':>10}{'t_y':>10}{'p_N':>10}  status",
+    ]
+    for row in zip(pts["x_mm"], pts["y_mm"], pts["slip_x_um"], pts["slip_y_um"], pts["t_x"], pts["t_y"], pts["p_N"],
+                   pts["status"]):
+        lines.append(f"{row[0]:>8.3f}{row[1]:>8.3f}{row[2]:>12.4g}{row[3]:>12.4g}{row[4]:>10.4g}{row[5]:>10.4g}"
+                     f"{row[6]:>10.4g}  {row[7]}")
+    return "\n".join(lines)
 
 
 def _progress(k: int, n: int, increment) -> None:

@@ -37,7 +37,7 @@ from ..interface import friction
 from ..validation import choice, positive
 from . import assembly
 from .contact import InterfaceMaterial
-from .mesh import Mesh, box, graded, rigid_base_interface
+from .mesh import Mesh, box, dofs, graded, rigid_base_interface
 from .solver import ContactModel, NewtonOptions, Solution, solve
 
 __all__ = ["BeamSpec", "BeamResult", "beam_mesh", "beam_model", "run_beam", "interface_fields", "beam_case"]
@@ -112,10 +112,6 @@ def beam_mesh(spec: BeamSpec) -> Mesh:
     return rigid_base_interface(box(x, y, z, contact_face="bottom", family=spec.elements, name="beam"))
 
 
-def _dofs(nodes, components) -> np.ndarray:
-    return (3 * np.asarray(nodes)[:, None] + np.asarray(components)[None, :]).ravel()
-
-
 def _load_pattern(spec: BeamSpec, mesh: Mesh) -> np.ndarray:
     """Nodal forces on the quarter model of a unit load on the full beam, pressing −z: they sum
     to −1/4 (checked in :func:`beam_model`)."""
@@ -144,9 +140,9 @@ def beam_model(spec: BeamSpec, material: InterfaceMaterial, mesh: Mesh | None = 
     two symmetry planes), load pattern of a unit load on the full beam."""
     mesh = beam_mesh(spec) if mesh is None else mesh
     fixed = np.concatenate([
-        _dofs(mesh.node_sets["base"], (0, 1, 2)),
-        _dofs(mesh.node_sets["beam.xmin"] if "beam.xmin" in mesh.node_sets else mesh.node_sets["xmin"], (0,)),
-        _dofs(mesh.node_sets["beam.ymin"] if "beam.ymin" in mesh.node_sets else mesh.node_sets["ymin"], (1,)),
+        dofs(mesh.node_sets["base"], (0, 1, 2)),
+        dofs(mesh.node_sets["beam.xmin"] if "beam.xmin" in mesh.node_sets else mesh.node_sets["xmin"], (0,)),
+        dofs(mesh.node_sets["beam.ymin"] if "beam.ymin" in mesh.node_sets else mesh.node_sets["ymin"], (1,)),
     ])
     load = _load_pattern(spec, mesh)
     total = load.reshape(-1, 3).sum(axis=0)

@@ -61,6 +61,9 @@ class InterfaceMaterial:
     length_per_mm   law length units per mm (1000 for moments in µm; 1 for a law in mm).
     closure0        initial closure u_N [law unit] of every point (a constant-k_N interface
                     pre-compressed by p = k_N·closure0; 0 = the InterfaceLaw's reference state).
+    tangential_form reading of the elastic tangential law (93) with k_T = a k_N(u_N), one of
+                    friction.TANGENTIAL_FORMS (friction.py, "Tangential forms"); passed to
+                    friction.update; all coincide for constant stiffnesses.
     """
 
     normal: object
@@ -68,9 +71,13 @@ class InterfaceMaterial:
     k_T: tuple[float, float] | None = None
     length_per_mm: float = MICROMETRES_PER_MM
     closure0: float = 0.0
+    tangential_form: str = "incremental-end"
 
     def __post_init__(self):
         friction._as_model(self.model)  # TypeError for anything else
+        if self.tangential_form not in friction.TANGENTIAL_FORMS:
+            raise ValueError(f"tangential_form must be one of {', '.join(friction.TANGENTIAL_FORMS)}, "
+                             f"got {self.tangential_form!r}")
         object.__setattr__(self, "length_per_mm", positive("length_per_mm", self.length_per_mm))
         if isinstance(self.normal, InterfaceLaw):
             if self.k_T is not None:
@@ -95,7 +102,7 @@ class InterfaceMaterial:
     def respond(self, committed: np.ndarray, d_jump) -> LawResponse:
         """The law for the jump increment d_jump (n, 3) [mm] since the committed states."""
         du = np.asarray(d_jump, dtype=float) * _S * self.length_per_mm
-        new = friction.update(self.model, committed, du, *self._stiffness)
+        new = friction.update(self.model, committed, du, *self._stiffness, tangential=self.tangential_form)
         tractions = new.state[:, :3] * _S
         tangent = new.D * (_S[:, None] * _S[None, :]) * self.length_per_mm
         return LawResponse(tractions, tangent, new.state, new.status)
@@ -112,7 +119,8 @@ TANGENTIAL = ("free", "stick", "coulomb")
 def statistical_interface(surface, p0: float, *, E_star: float | None = None, material=None,
                           tangential: str = "free", mu: float | None = None, kT_over_kN=None,
                           nu: float = 0.25, model=None, pressure_range=(1e-12, 100.0),
-                          length_per_mm: float = MICROMETRES_PER_MM) -> InterfaceMaterial:
+                          length_per_mm: float = MICROMETRES_PER_MM,
+                          tangential_form: str = "incremental-end") -> InterfaceMaterial:
     """The interface of the paper: the statistical normal law of ``surface`` (elastic with
     ``E_star``, or elasto-plastic with an AsperityMaterial ``material``), seated at the pressure
     ``p0`` [N/mm²] (u_N = 0 there), with a tangential restraint:
@@ -126,7 +134,8 @@ def statistical_interface(surface, p0: float, *, E_star: float | None = None, ma
     (96)/Table 3 for the representative summit ellipse of the surface
     (:func:`roughcontact.interface.tangential.representative_aspect`) and Poisson's ratio ``nu``.
     ``pressure_range`` [N/mm²]: the tabulated range (below it the law's tail to open contact).
-    Lengths of the law in the moments' unit (µm: ``length_per_mm`` = 1000)."""
+    Lengths of the law in the moments' unit (µm: ``length_per_mm`` = 1000).
+    ``tangential_form``: the reading of (93) with k_T = a k_N(u_N) (InterfaceMaterial)."""
     from ..interface import NormalLawTable, mindlin_kT_over_kN
     from ..interface.tangential import representative_aspect
 
@@ -149,4 +158,4 @@ def statistical_interface(surface, p0: float, *, E_star: float | None = None, ma
     if kT_over_kN is None:
         kT_over_kN = mindlin_kT_over_kN(representative_aspect(surface), nu)
     law = InterfaceLaw.from_pressure(table, p0, kT_over_kN)
-    return InterfaceMaterial(law, model, length_per_mm=length_per_mm)
+    return InterfaceMaterial(law, model, length_per_mm=length_per_mm, tangential_form=tangential_form)

@@ -33,7 +33,7 @@ from .interface_element import INTERFACE18, INTERFACE32, InterfaceElement
 
 __all__ = [
     "CellBlock", "FaceSet", "InterfaceBlock", "Mesh", "LATERAL28", "graded", "box",
-    "rigid_base_interface", "merge", "interface_between", "local_face",
+    "rigid_base_interface", "merge", "interface_between", "local_face", "dofs",
 ]
 
 #: reference positions of the lattice steps 0..4 inside one element (section "Node positions")
@@ -163,6 +163,12 @@ class Mesh:
 # ---------------------------------------------------------------------------------------------
 # edges
 # ---------------------------------------------------------------------------------------------
+def dofs(nodes, components) -> np.ndarray:
+    """Global dof indices of ``nodes`` × ``components`` (0 u_x, 1 u_y, 2 u_z; three dofs per
+    node, node-major), e.g. the supported dofs of a node set."""
+    return (3 * np.asarray(nodes)[:, None] + np.asarray(components)[None, :]).ravel()
+
+
 def graded(a: float, b: float, n: int, ratio: float = 1.0) -> np.ndarray:
     """n + 1 element boundaries from a to b (a < b, mm) whose sizes grow geometrically, the
     last size being ``ratio`` × the first (ratio < 1: small elements at b). Ends are exact."""
@@ -385,17 +391,19 @@ def merge(a: Mesh, b: Mesh) -> Mesh:
 
 
 def _match_points(pa: np.ndarray, pb: np.ndarray, tol: float) -> np.ndarray:
-    """For each point of pa (n, 3) the index of the point of pb within ``tol`` [mm]; ValueError
-    unless that pairing is one-to-one. Snapping to a tol-grid finds almost all pairs at once; a
-    pair that straddles a grid line is found by the brute-force pass over the few left over."""
+    """For each point of pa (n, 3) the index of the point of pb within ``tol`` [mm] (pb may hold
+    more points); ValueError unless every point of pa has its own partner. Snapping to a tol-grid
+    finds almost all pairs at once; a pair that straddles a grid line is found by the brute-force
+    pass over the few left over (one pa point at a time: pb may be a whole foundation's face)."""
     lookup = {tuple(q): j for j, q in enumerate(np.round(pb / tol).astype(np.int64))}
     match = np.array([lookup.get(tuple(q), -1) for q in np.round(pa / tol).astype(np.int64)], dtype=np.int64)
     left_a = np.flatnonzero(match < 0)
     if left_a.size:
         left_b = np.setdiff1d(np.arange(len(pb)), match[match >= 0])
         if left_b.size:
-            d = np.linalg.norm(pa[left_a, None, :] - pb[None, left_b, :], axis=2)
-            match[left_a] = np.where(d.min(axis=1) <= tol, left_b[d.argmin(axis=1)], -1)
+            for i in left_a:
+                d = np.linalg.norm(pb[left_b] - pa[i], axis=1)
+                match[i] = left_b[d.argmin()] if d.min() <= tol else -1
     if np.any(match < 0) or np.unique(match).size != match.size:
         raise ValueError("the two face sets do not carry coincident nodes (non-matching meshes)")
     return match
@@ -405,22 +413,33 @@ def interface_between(mesh: Mesh, face_set_a: str, face_set_b: str, interface_na
                       rtol: float = 1e-9) -> Mesh:
     """A new mesh with interface elements joining ``face_set_a`` (the lower body's contact faces,
     side A, whose outward normal points to B) and ``face_set_b`` (the upper body's), matched node
-    by node by coordinates (within rtol × the contact zone's size). ValueError unless the two face
-    sets are node-matching meshes of one surface with distinct nodes."""
+    by node by coordinates (within rtol × the contact zone's size).
+
+    Side A may cover more than side B (a foundation's whole top face under a smaller punch):
+    every face of B is paired with the face of A at the same place and A's other faces are
+    left free. ValueError unless every face of B has such a partner (node-matching meshes of
+    the common surface) and the two sets have distinct nodes. Elements follow A's face order.
+    """
     fa, element = _face_set(mesh, face_set_a)
     fb, element_b = _face_set(mesh, face_set_b)
     _check_new_interface(mesh, interface_name)
-    if element_b is not element or len(fa) != len(fb):
+    if element_b is not element or len(fa) < len(fb):
         raise ValueError(f"face sets {face_set_a!r} and {face_set_b!r} differ in face type or count")
     nodes_a, inverse = np.unique(fa.face_nodes, return_inverse=True)
     nodes_b = np.unique(fb.face_nodes)
-    if nodes_a.size != nodes_b.size or np.intersect1d(nodes_a, nodes_b).size:
-        raise ValueError("the two face sets must carry equally many, distinct nodes")
+    if nodes_a.size < nodes_b.size or np.intersect1d(nodes_a, nodes_b).size:
+        raise ValueError("the two face sets must carry distinct nodes, side A at least as many as side B")
     pa, pb = mesh.points[nodes_a], mesh.points[nodes_b]
     size = np.linalg.norm(np.ptp(np.vstack([pa, pb]), axis=0))
-    side_b = nodes_b[_match_points(pa, pb, rtol * max(size, 1.0))][inverse.reshape(fa.face_nodes.shape)]
-    faces = [np.unique(np.sort(f, axis=1), axis=0) for f in (side_b, fb.face_nodes)]
-    if not np.array_equal(*faces):
+    partner = _match_points(pb, pa, rtol * max(size, 1.0))  # B node -> its A node (index into nodes_a)
+    b_of_a = np.full(nodes_a.size, -1, dtype=np.int64)  # A node -> the B node on it, −1: none
+    b_of_a[partner] = nodes_b
+    side_b = b_of_a[inverse.reshape(fa.face_nodes.shape)]  # A's faces in B's node numbers
+    # a face is known by its set of nodes: pair B's faces with A's faces whose nodes all face B nodes
+    key_of_b = {tuple(k) for k in np.sort(fb.face_nodes, axis=1)}
+    keys_a = [tuple(k) for k in np.sort(side_b, axis=1)]
+    paired = np.array([k in key_of_b for k in keys_a], dtype=bool) & np.all(side_b >= 0, axis=1)
+    if {keys_a[i] for i in np.flatnonzero(paired)} != key_of_b or paired.sum() != len(fb):
         raise ValueError(f"the faces of {face_set_a!r} and {face_set_b!r} do not coincide one to one")
-    block = InterfaceBlock(interface_name, element, np.hstack([fa.face_nodes, side_b]))
+    block = InterfaceBlock(interface_name, element, np.hstack([fa.face_nodes[paired], side_b[paired]]))
     return _with(mesh, interfaces=mesh.interfaces + (block,))

@@ -4,9 +4,10 @@ penalty is the physical interface stiffness, active set per point, 16 increments
 
 Equations (dof vector u [mm], free dofs f, supports u = 0 on ``fixed``):
 
-    r(u) = λ·F − K u − Bᵀ(w ⊙ s(δ(u)))  = 0  on f,     δ = B u,
+    r(u) = F₀ + λ·F − K u − Bᵀ(w ⊙ s(δ(u)))  = 0  on f,     δ = B u,
 
-with F the load pattern [N per unit of λ], K the bulk stiffness [N/mm], B the jump operator and
+with F the load pattern [N per unit of λ], F₀ a constant (dead) load present at every level
+(e.g. a seating pressure; zero by default), K the bulk stiffness [N/mm], B the jump operator and
 s the interface tractions from :class:`~.contact.InterfaceMaterial` (the library's law). Each
 load level λ_k is reached from the last converged state by Newton's method with the consistent
 tangent K + Bᵀ diag(w D) B; the law's state is committed only at convergence.
@@ -97,13 +98,15 @@ class NewtonOptions:
 @dataclass(frozen=True, eq=False)
 class ContactModel:
     """The discrete problem: bulk stiffness K (3N × 3N) [N/mm], interface points, interface
-    material, supported dofs (u = 0) and the load pattern F (3N,) [N per unit load level]."""
+    material, supported dofs (u = 0), the load pattern F (3N,) [N per unit load level] and a
+    dead load F₀ (3N,) [N] present at every level (None: zero)."""
 
     stiffness: sp.csr_matrix
     points: InterfacePoints
     material: InterfaceMaterial
     fixed: np.ndarray
     load: np.ndarray
+    dead_load: np.ndarray | None = None
     _cache: dict = field(default_factory=dict, repr=False)
 
     def __post_init__(self):
@@ -115,23 +118,32 @@ class ContactModel:
         if fixed.size and (fixed[0] < 0 or fixed[-1] >= n):
             raise ValueError("fixed dofs out of range")
         load = np.asarray(self.load, dtype=float)
-        if load.shape != (n,) or not np.all(np.isfinite(load)):
-            raise ValueError(f"the load pattern must be a finite vector of length {n}")
+        dead = np.zeros(n) if self.dead_load is None else np.asarray(self.dead_load, dtype=float)
+        for name, vec in (("load pattern", load), ("dead load", dead)):
+            if vec.shape != (n,) or not np.all(np.isfinite(vec)):
+                raise ValueError(f"the {name} must be a finite vector of length {n}")
+        object.__setattr__(self, "dead_load", dead)
         if self.points.B.shape[1] != n:
             raise ValueError("the interface points belong to another mesh")
         object.__setattr__(self, "fixed", fixed)
         object.__setattr__(self, "load", load)
 
     @classmethod
-    def assemble(cls, mesh, elasticity, material: InterfaceMaterial, fixed, load, *, rule: str = "lobatto",
-                 lay=(1.0, 0.0, 0.0)) -> "ContactModel":
+    def assemble(cls, mesh, elasticity, material: InterfaceMaterial, fixed, load, *, dead_load=None,
+                 rule: str = "lobatto", lay=(1.0, 0.0, 0.0)) -> "ContactModel":
         """From a :class:`~.mesh.Mesh`: ``elasticity`` a 6×6 Voigt matrix for every block or a
         dict block name → matrix [N/mm²] (:func:`.assembly.isotropic_elasticity`), interface
         points of ``rule`` with t1 along ``lay``."""
         blocks = [(b.element, b.cells) for b in mesh.blocks]
         D = [elasticity[b.name] for b in mesh.blocks] if isinstance(elasticity, dict) else elasticity
         K = assembly.stiffness(mesh.points, blocks, D)
-        return cls(K, interface_points(mesh, rule, lay), material, fixed, load)
+        return cls(K, interface_points(mesh, rule, lay), material, fixed, load, dead_load)
+
+    def with_material(self, material: InterfaceMaterial) -> "ContactModel":
+        """The same bodies, supports and loads with another interface material, sharing this
+        model's factorised bulk (the linear solvers depend on K, B, the supports and loads only)."""
+        return ContactModel(self.stiffness, self.points, material, self.fixed, self.load, self.dead_load,
+                            self._cache)
 
     @property
     def free(self) -> np.ndarray:
@@ -188,9 +200,9 @@ class Solution:
         return float(np.sum(-inc.tractions[:, 2] * self.model.points.weights))
 
     def applied_normal_load(self, k: int = -1, normal=(0.0, 0.0, 1.0)) -> float:
-        """−(λF)·n summed over all nodes [N]: the applied load pressing along −n."""
+        """−(F₀ + λF)·n summed over all nodes [N]: the applied load pressing along −n."""
         inc = self.increments[k]
-        F = (inc.level * self.model.load).reshape(-1, 3)
+        F = (self.model.dead_load + inc.level * self.model.load).reshape(-1, 3)
         return float(-F.sum(axis=0) @ np.asarray(normal, dtype=float))
 
     def point_fields(self, k: int = -1, reference: int | None = None) -> dict[str, np.ndarray]:
@@ -237,7 +249,7 @@ class _Sparse:
         self.K = model.stiffness[free][:, free].tocsc()
         self.B = model.points.B[:, free].tocsr()
 
-    def __call__(self, points, D, r):
+    def __call__(self, points, D, r, u, level):
         Kt = self.K + interface_tangent(_restricted(points, self.B), D)
         return _splu(Kt, _symmetric(D)).solve(r)
 
@@ -245,8 +257,10 @@ class _Sparse:
 class _Condensed:
     """The bulk factored once and condensed onto the interface dofs (module docstring). The
     dense system is solved by Cholesky when the interface tangent is symmetric (no friction
-    or associated slip), by LU otherwise; K_RR⁻¹K_RI is kept when it fits in ``keep_bytes``
-    (one back-substitution per iteration instead of two)."""
+    or associated slip), by LU otherwise. X = K_RR⁻¹K_RI is kept when it fits in
+    ``keep_bytes``; then no iteration needs a sparse solve: the bulk rows R carry no interface
+    term, so their residual r_R = F₀_R + λF_R − K_RR u_R − K_RI u_I is linear and
+    K_RR⁻¹ r_R = a₀ + λa₁ − u_R − X u_I with a₀ = K_RR⁻¹F₀_R, a₁ = K_RR⁻¹F_R computed once."""
 
     keep_bytes = 256 * 2**20
 
@@ -271,11 +285,16 @@ class _Condensed:
                 X[:, j0:j0 + 256] = block
         self.S = 0.5 * (S + S.T)  # symmetric up to round-off: make it exactly so
         self.X, self.K_RI = X, K_RI
+        self.a0 = self.K_RR.solve(model.dead_load[free][self.R])
+        self.a1 = self.K_RR.solve(model.load[free][self.R])
         self.n = free.size
 
-    def __call__(self, points, D, r):
+    def __call__(self, points, D, r, u, level):
         rI, rR = r[self.I], r[self.R]
-        y = self.K_RR.solve(rR) if np.any(rR) else np.zeros(self.R.size)
+        if self.X is not None:
+            y = self.a0 + level * self.a1 - u[self.R] - self.X @ u[self.I]  # = K_RR⁻¹ r_R (class docstring)
+        else:
+            y = self.K_RR.solve(rR)
         A = self.S + interface_tangent(_restricted(points, self.B_I), D).toarray()
         b = rI - self.K_IR @ y
         du_I = la.solve(A, b, assume_a="pos" if _symmetric(D) else "gen", check_finite=True)
@@ -307,7 +326,7 @@ def _newton(model, solver, opts, level, u_n, state_n, guess):
     free, points, material = model.free, model.points, model.material
     jumps_n = points.jumps(u_n)
     u = guess.copy()
-    f_ext = level * model.load
+    f_ext = model.dead_load + level * model.load
     residuals, last_du, last_status = [], None, None
     for it in range(opts.max_iterations + 1):
         try:
@@ -332,7 +351,7 @@ def _newton(model, solver, opts, level, u_n, state_n, guess):
         if it == opts.max_iterations:
             raise _Failed(norm, f"{opts.max_iterations} iterations without convergence")
         try:
-            du = solver(points, resp.tangent, r)
+            du = solver(points, resp.tangent, r, u[free], level)
         except (np.linalg.LinAlgError, RuntimeError) as exc:  # dense LinAlgError, SuperLU "singular"
             raise _Failed(norm, f"singular tangent ({exc})") from None
         if not np.all(np.isfinite(du)) or np.max(np.abs(du)) > _DIVERGED * max(np.max(np.abs(u)), _DIVERGED_FLOOR):

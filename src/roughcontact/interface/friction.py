@@ -29,6 +29,33 @@ coefficient ratio) is called ``mu_o`` here (the paper also uses β for the tract
 Elastic part (93)-(94): Δt = diag(k_Tx, k_Ty, k_N) Δu^e, k's per unit area: constant inputs or
 from the tabulated normal law (next section).
 
+Tangential forms (``update(..., tangential=...)``, :data:`TANGENTIAL_FORMS`)
+--------------------------------------------------------------------------
+With a load-dependent k_T = a k_N(u_N) the incremental law (93) does not say at which u_N the
+stiffness is taken, and section 9.2 (the flat punch) does not say either. Three stated
+readings of the elastic (trial) tangential traction, n the last converged state:
+
+* ``"incremental-end"`` (default): t^tr = t_n + K_T(u_N,n+1) Δu_T. The return mapping uses
+  K_T(u_N,n+1); ∂t^tr/∂u_N = K_T'(u_N,n+1) Δu_T, K_T' = a d²p_N/du_N².
+* ``"incremental-start"``: t^tr = t_n + K_T(u_N,n) Δu_T, k_T frozen at the start of the
+  increment (the classic explicit treatment of a hypoelastic law): the return mapping uses
+  K_T(u_N,n), ∂t^tr/∂u_N = 0. A point open at the start (K_T(u_N,n) = 0) has no tangential
+  stiffness for the increment in which it closes (t_T = 0, stick).
+* ``"secant"`` (a total elastic law): t^tr = K_T(u_N,n+1) (u^e_T,n + Δu_T) with the elastic
+  tangential displacement of the last converged state u^e_T,n = t_n / K_T(u_N,n) (0 where that
+  state was open, K_T(u_N,n) = 0); the return mapping uses K_T(u_N,n+1),
+  ∂t^tr/∂u_N = K_T'(u_N,n+1) (u^e_T,n + Δu_T). The elastic tangential response is then path
+  independent: a stick cycle of Δu_T at varying u_N returns t_T to 0 (to round-off), where the
+  incremental forms keep a residual wherever k_T changed along the cycle (hypoelastic drift;
+  7-9 % of the peak in tests/interface/test_tangential_forms.py).
+
+For a constant k_T the three coincide (bit for bit: the kernel writes the secant trial as
+t_n (K_T/K_T,n) + K_T Δu_T, and K_T/K_T,n = 1 exactly). Why it matters (NOTES.md, "Punch (9.2)";
+docs/errata.md D3): under the incremental law with 1000 N on the whole punch nothing slips (the
+largest |t_T|/(μ p) is 0.98, 0.78, 0.89 in cases a, b, c on the 21-node mesh), while the secant
+(total) reading lets it slip; and with k_T frozen at the start the tangential forces reverse on
+unloading even without slip (time-integration error).
+
 Normal contact, sign convention and reference state (the one place: :func:`normal_law`)
 -------------------------------------------------------------------------------------
 u_N is the normal *closure* (approach, penetration) of the interface: positive closes it.
@@ -45,9 +72,10 @@ end of the step, u_N = u_N,n + Δu_N (the total form of (117)), from one of two 
   first, 9.1): u_N = 0 ↔ p_N = p0 > 0, u_N < 0 unloads towards the light end, open (p_N = 0)
   for u_N ≤ u_open (the table's light-end tail, docs/interface.md); a closure beyond the
   table's heavy end raises ValueError. k_Tx = a_x k_N(u_N), k_Ty = a_y k_N(u_N) with the law's
-  factors a = k_T/k_N, also at the end of the step: the trial traction is
-  t^tr = t_n + K_T(u_N) Δu_T (incremental (93)) and the consistent tangent carries
-  ∂K_T/∂u_N = a d²p_N/du_N² besides ∂p_N/∂u_N = k_N in the friction limit.
+  factors a = k_T/k_N, by default also at the end of the step: the trial traction is
+  t^tr = t_n + K_T(u_N) Δu_T (incremental (93); other forms in "Tangential forms") and the
+  consistent tangent carries ∂K_T/∂u_N = a d²p_N/du_N² besides ∂p_N/∂u_N = k_N in the
+  friction limit.
 
 For p_N = 0 the contact is open: p_N = 0, t_T = 0, D = 0, plastic slips and hardening frozen
 (tangential motion of separated faces is neither elastic nor frictional slip). An engine that
@@ -62,7 +90,7 @@ for tangential restraints the paper leaves open (9.1).
 Python interface
 ----------------
 ``update(model, state, du, k_N, k_Tx, k_Ty)`` or ``update(model, state, du, law)``
--> :class:`FrictionUpdate` ``(state, D, status)``
+(keywords ``tol``, ``tangential``) -> :class:`FrictionUpdate` ``(state, D, status)``
 
 * ``state``: float array (..., NSTATE = 9), one row per integration point (or shape (9,)),
   columns (named index constants):
@@ -93,8 +121,9 @@ N/(mm²·µm) (the project's K/A0); n_x, n_y, n in 1/[length] (275 /mm = 0.275 /
 
 Algorithm
 ---------
-Elastic predictor t^tr = t_n + K_T Δu_T; if f(t^tr, κ_n, p_N,n+1) ≤ 0: stick, D = D^e (94)
-(plus ∂K_T/∂u_N Δu_T in the u_N column with a tabulated law).
+Elastic predictor t^tr = t_n + K_T Δu_T (or another tangential form); if
+f(t^tr, κ_n, p_N,n+1) ≤ 0: stick, D = D^e (94) (plus ∂K_T/∂u_N e in the u_N column with a
+tabulated law, the lever e = Δu_T, 0 or u^e_T,n + Δu_T by form).
 Otherwise backward Euler (implicit) return mapping: t = t^tr - K_T Δu^p with Δu^p, κ and the
 potential ratio all evaluated at the end of the step, so that f(t, κ, p) = 0 holds to machine
 precision for any increment size. Writing Δu_i^p = λ w_i t_i (w_x = ρ, w_y = 1/ρ,
@@ -147,8 +176,8 @@ import numpy as np
 
 from ..validation import positive
 from .kernels import (  # noqa: F401  (the state layout and status codes are part of this API)
-    BEYOND, DISSIPATION, FAILED, KAPPA, KAPPA_X, KAPPA_Y, NSTATE, OPEN, SLIP, STICK, T_N, T_X, T_Y,
-    U_N, UP_X, UP_Y, _iso_kernel, _no_limit_kernel, _ortho_kernel,
+    BEYOND, DISSIPATION, FAILED, FORM_END, FORM_SECANT, FORM_START, KAPPA, KAPPA_X, KAPPA_Y, NSTATE,
+    OPEN, SLIP, STICK, T_N, T_X, T_Y, U_N, UP_X, UP_Y, _iso_kernel, _no_limit_kernel, _ortho_kernel,
 )
 from .normal_law import InterfaceLaw
 
@@ -156,9 +185,9 @@ __all__ = [
     "NSTATE", "T_X", "T_Y", "T_N", "U_N", "UP_X", "UP_Y", "KAPPA_X", "KAPPA_Y", "KAPPA",
     "DISSIPATION", "STICK", "SLIP", "OPEN",
     "OrthotropicHardening", "IsotropicHardening", "Frictionless", "NoSlip", "FrictionUpdate",
-    "OPENING_SIGN",
+    "OPENING_SIGN", "TANGENTIAL_FORMS",
     "normal_law", "initial_state", "update",
-    "limit_function", "hardening_modulus", "continuum_tangent",
+    "limit_function", "utilisation", "hardening_modulus", "continuum_tangent",
     "slip_angle", "traction_angle", "directional_coefficient_115",
     "directional_coefficient_beta", "FIG18_CASES", "fig18_preset",
 ]
@@ -167,6 +196,11 @@ __all__ = [
 #: (Δu_Tx, Δu_Ty, Δu_N closure); (t_x, t_y, p_N) times S is the tension-positive (t_x, t_y, σ_N);
 #: the tangent D becomes S D S (module docstring, "Normal contact, sign convention ...").
 OPENING_SIGN = np.array([1.0, 1.0, -1.0])
+
+#: the readings of the elastic tangential law (93) with a load-dependent k_T (module docstring,
+#: "Tangential forms"); the first is the default
+TANGENTIAL_FORMS = ("incremental-end", "incremental-start", "secant")
+_FORM_CODES = dict(zip(TANGENTIAL_FORMS, (FORM_END, FORM_START, FORM_SECANT)))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -365,7 +399,8 @@ def _prepare(state, du, stiffness):
     return shape, s2, d2, st
 
 
-def update(model, state, du, k_N, k_Tx=None, k_Ty=None, *, tol=1e-12) -> FrictionUpdate:
+def update(model, state, du, k_N, k_Tx=None, k_Ty=None, *, tol=1e-12,
+           tangential="incremental-end") -> FrictionUpdate:
     """Incremental update of the interface law at many integration points (numba kernel).
 
     Parameters
@@ -379,6 +414,8 @@ def update(model, state, du, k_N, k_Tx=None, k_Ty=None, *, tol=1e-12) -> Frictio
         k_T = a k_N(u_N); then no k_Tx, k_Ty). See "Normal contact, sign convention and
         reference state" in the module docstring.
     tol : relative Newton step tolerance of the return mapping (0 < tol ≤ 1e-6).
+    tangential : one of :data:`TANGENTIAL_FORMS`, the reading of (93) with a load-dependent
+        k_T (module docstring, "Tangential forms"); all coincide for constant stiffnesses.
 
     Returns
     -------
@@ -387,6 +424,8 @@ def update(model, state, du, k_N, k_Tx=None, k_Ty=None, *, tol=1e-12) -> Frictio
     Raises ValueError for bad input and for closures beyond the heavy end of a tabulated law.
     """
     model = _as_model(model)
+    if not isinstance(tangential, str) or tangential not in _FORM_CODES:
+        raise ValueError(f"tangential must be one of {', '.join(TANGENTIAL_FORMS)}, got {tangential!r}")
     tol = float(tol)
     if not (0.0 < tol <= 1e-6):
         raise ValueError(f"tol must be in (0, 1e-6], got {tol!r}")
@@ -396,11 +435,13 @@ def update(model, state, du, k_N, k_Tx=None, k_Ty=None, *, tol=1e-12) -> Frictio
     s_new = np.empty_like(s_old)
     D = np.empty((n, 3, 3))
     status = np.empty(n, dtype=np.int8)
-    _KERNELS[type(model)](model.params(), st, s_old, d, s_new, D, status, tol, tab, h_ref)
+    _KERNELS[type(model)](model.params(), st, s_old, d, s_new, D, status, tol, tab, h_ref,
+                          np.int64(_FORM_CODES[tangential]))
     if np.any(status == BEYOND):
         bad = np.flatnonzero(status == BEYOND)
+        u_bad = max(s_new[bad[0], U_N], s_old[bad[0], U_N])  # start or end of the increment
         raise ValueError(
-            f"u_N = {s_new[bad[0], U_N]:g} at points {bad[:10].tolist()} exceeds the heavy end of "
+            f"u_N = {u_bad:g} at points {bad[:10].tolist()} exceeds the heavy end of "
             f"the tabulated normal law (u_max = {k_N.u_max:g}, p_max = {k_N.table.p_max:g}); "
             "rebuild the table with a larger p_max")
     if np.any(status == FAILED):
@@ -423,6 +464,19 @@ def limit_function(model, state):
         mux, muy = model.mu(s[..., KAPPA_X], s[..., KAPPA_Y])
         return np.sqrt((tx / mux) ** 2 + (ty / muy) ** 2) - p  # eq. (91)
     return np.hypot(tx, ty) - model.mu(s[..., KAPPA]) * p  # eq. (120)
+
+
+def utilisation(model, state):
+    """How much of the friction limit the tangential traction uses [1]: (f + p_N)/p_N of (91)
+    (√((t_x/μ_x)² + (t_y/μ_y)²)/p_N) or (120) (|t_T|/(μ p_N)); 1 on the limit surface (slip),
+    < 1 inside (stick). Points with p_N ≤ 0 (open) have no limit: they are reported as 0."""
+    if not isinstance(model, (OrthotropicHardening, IsotropicHardening)):
+        raise TypeError("utilisation needs a friction limit: an OrthotropicHardening or IsotropicHardening model")
+    s = np.asarray(state, dtype=float)
+    p = s[..., T_N]
+    closed = p > 0.0
+    ratio = (limit_function(model, s) + p) / np.where(closed, p, 1.0)
+    return np.where(closed, ratio, 0.0)
 
 
 def slip_angle(du_p):

@@ -13,6 +13,11 @@ State layout (one row per integration point; the friction module re-exports the 
 T_X, T_Y tangential tractions; T_N pressure p_N ≥ 0; U_N closure u_N (> 0 closes); UP_X,
 UP_Y plastic slips; KAPPA_X, KAPPA_Y accumulated axial slips (isotropic: KAPPA = KAPPA_X the
 slip length); DISSIPATION ∫ t_T·du_T^p. Status codes STICK, SLIP, OPEN; internal failure codes.
+
+Tangential forms (the last argument ``form`` of the batch kernels, an int64; friction.py's
+TANGENTIAL_FORMS): FORM_END = 0 "incremental-end" t^tr = t_n + K_T(u_N,n+1) Δu_T;
+FORM_START = 1 "incremental-start" t^tr = t_n + K_T(u_N,n) Δu_T; FORM_SECANT = 2 "secant"
+t^tr = K_T(u_N,n+1) (u^e_T,n + Δu_T), u^e_T,n = t_n / K_T(u_N,n) (0 where K_T(u_N,n) = 0).
 """
 
 from __future__ import annotations
@@ -25,12 +30,14 @@ import numpy as np
 __all__ = [
     "NSTATE", "T_X", "T_Y", "T_N", "U_N", "UP_X", "UP_Y", "KAPPA_X", "KAPPA_Y", "KAPPA",
     "DISSIPATION", "STICK", "SLIP", "OPEN", "FAILED", "BEYOND", "closure_law",
+    "FORM_END", "FORM_START", "FORM_SECANT",
 ]
 
 NSTATE = 9
 T_X, T_Y, T_N, U_N, UP_X, UP_Y, KAPPA_X, KAPPA_Y, DISSIPATION = range(NSTATE)
 KAPPA = KAPPA_X  # isotropic model: accumulated slip length
 STICK, SLIP, OPEN = 0, 1, 2
+FORM_END, FORM_START, FORM_SECANT = 0, 1, 2  # tangential forms of (93), module docstring
 FAILED = -1
 BEYOND = -2  # closure beyond the heavy end of a tabulated normal law
 _MAXIT = 200
@@ -282,13 +289,15 @@ def _ortho_solve_r(lam, r0, ttx, tty, ktx, kty, kxn, kyn, par, wk, tol):
 
 
 @numba.njit(cache=True)
-def _begin_update(stiff, s_old, du, s_new, D, tab, h_ref):
-    """Shared start of both updates: copy the state, zero D, apply the normal law and the
-    tangential stiffnesses at the end of the step; for a closed contact the elastic (trial)
-    tangential tractions, eq. (93)-(94). ``stiff`` = (k_Tx, k_Ty, k_N) for the constant law,
+def _begin_update(stiff, s_old, du, s_new, D, tab, h_ref, form):
+    """Shared start of both updates: copy the state, zero D, apply the normal law at the end of
+    the step; for a closed contact the trial tangential tractions of the tangential ``form``
+    (module docstring), eq. (93)-(94). ``stiff`` = (k_Tx, k_Ty, k_N) for the constant law,
     (k_Tx/k_N, k_Ty/k_N, unused) with a table (k_T = a k_N(u_N)).
-    Returns (status, p, dp, ttx, tty, ktx, kty, dktx, dkty) with d = d/du_N and status
-    OPEN, BEYOND or STICK (= closed, to be decided)."""
+    Returns (status, p, dp, ttx, tty, ktx, kty, dktx, dkty, lvx, lvy): k_T the stiffness of the
+    return mapping, dk_T = dk_T/du_N its u_N-dependence and lv = e the lever, ∂t^tr/∂u_N = dk_T e
+    (e = Δu_T end, u^e_T,n + Δu_T secant; dk_T = 0 start); status OPEN, BEYOND (the end, or
+    for start/secant the start, of the step beyond the table) or STICK (= closed, to decide)."""
     for j in range(NSTATE):
         s_new[j] = s_old[j]
     for a in range(3):
@@ -299,57 +308,87 @@ def _begin_update(stiff, s_old, du, s_new, D, tab, h_ref):
     s_new[U_N] = u_n
     s_new[T_N] = p
     if beyond:
-        return BEYOND, p, dp, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+        return BEYOND, p, dp, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     if p <= 0.0:
         s_new[T_X] = 0.0
         s_new[T_Y] = 0.0
-        return OPEN, p, dp, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+        return OPEN, p, dp, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+    tnx = s_old[T_X]
+    tny = s_old[T_Y]
     if tab.shape[0] > 0:
         ktx = stiff[0] * dp
         kty = stiff[1] * dp
         dktx = stiff[0] * ddp
         dkty = stiff[1] * ddp
-    else:
+        ktx0 = ktx
+        kty0 = kty
+        if form != FORM_END:  # K_T(u_N,n) = a k_N(u_N,n) at the start of the step
+            _, dp0, _, beyond0 = _normal_law(s_old[U_N], stiff[2], tab, h_ref)
+            if beyond0:
+                return BEYOND, p, dp, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+            ktx0 = stiff[0] * dp0
+            kty0 = stiff[1] * dp0
+            if dp0 <= 0.0:  # the start state was open: K_T,n = 0 and t_n = 0 (u^e_T,n = 0)
+                tnx = 0.0
+                tny = 0.0
+    else:  # constant k_T: K_T(u_N,n) = K_T(u_N,n+1), all forms reduce to the end form bitwise
         ktx = stiff[0]
         kty = stiff[1]
         dktx = 0.0
         dkty = 0.0
-    return (STICK, p, dp, s_old[T_X] + ktx * du[0], s_old[T_Y] + kty * du[1],
-            ktx, kty, dktx, dkty)
+        ktx0 = ktx
+        kty0 = kty
+    if form == FORM_START:  # k_T frozen at u_N,n: ∂t^tr/∂u_N = 0, return mapping with K_T(u_N,n)
+        return STICK, p, dp, tnx + ktx0 * du[0], tny + kty0 * du[1], ktx0, kty0, 0.0, 0.0, 0.0, 0.0
+    if form == FORM_SECANT:  # t^tr = K_T(u_N,n+1)(t_n/K_T(u_N,n) + Δu_T), written t_n (K/K_n) + K Δu_T
+        ttx = ktx * du[0]
+        tty = kty * du[1]
+        lvx = du[0]
+        lvy = du[1]
+        if ktx0 > 0.0:
+            ttx += tnx * (ktx / ktx0)
+            lvx += tnx / ktx0
+        if kty0 > 0.0:
+            tty += tny * (kty / kty0)
+            lvy += tny / kty0
+        return STICK, p, dp, ttx, tty, ktx, kty, dktx, dkty, lvx, lvy
+    return STICK, p, dp, tnx + ktx * du[0], tny + kty * du[1], ktx, kty, dktx, dkty, du[0], du[1]
 
 
 @numba.njit(cache=True)
-def _stick(ttx, tty, ktx, kty, dp, dktx, dkty, du, s_new, D):
-    """Stick: t = t^tr, D = D^e (94) plus ∂t^tr/∂u_N = ∂K_T/∂u_N Δu_T (zero for constant k_T)."""
+def _stick(ttx, tty, ktx, kty, dp, dktx, dkty, lvx, lvy, s_new, D):
+    """Stick: t = t^tr, D = D^e (94) plus ∂t^tr/∂u_N = ∂K_T/∂u_N e (lever e of _begin_update;
+    zero for constant k_T and for the start form)."""
     s_new[T_X] = ttx
     s_new[T_Y] = tty
     D[0, 0] = ktx
     D[1, 1] = kty
     D[2, 2] = dp
     if dktx != 0.0 or dkty != 0.0:
-        D[0, 2] = dktx * du[0]
-        D[1, 2] = dkty * du[1]
+        D[0, 2] = dktx * lvx
+        D[1, 2] = dkty * lvy
     return STICK
 
 
 @numba.njit(cache=True)
-def _assemble_tangent(sens, ktx, kty, dp, dktx, dkty, du, D):
+def _assemble_tangent(sens, ktx, kty, dp, dktx, dkty, lvx, lvy, D):
     """D rows t_x, t_y from the sensitivities sens[i, m] = dt_i/dθ_m of the return map to
-    θ = (t^tr_x, t^tr_y, p, k_Tx, k_Ty) by the chain rule through t^tr = t_n + K_T(u_N) Δu_T,
-    p(u_N), K_T(u_N); row p_N: dp/du_N."""
+    θ = (t^tr_x, t^tr_y, p, k_Tx, k_Ty) by the chain rule through ∂t^tr/∂Δu_T = K_T,
+    ∂t^tr/∂u_N = ∂K_T/∂u_N e (lever e of _begin_update), p(u_N), K_T(u_N); row p_N: dp/du_N."""
     for i in range(2):
         D[i, 0] = sens[i, 0] * ktx
         D[i, 1] = sens[i, 1] * kty
         D[i, 2] = sens[i, 2] * dp
         if dktx != 0.0 or dkty != 0.0:
-            D[i, 2] += (sens[i, 0] * du[0] + sens[i, 3]) * dktx + (sens[i, 1] * du[1] + sens[i, 4]) * dkty
+            D[i, 2] += (sens[i, 0] * lvx + sens[i, 3]) * dktx + (sens[i, 1] * lvy + sens[i, 4]) * dkty
     D[2, 2] = dp
 
 
 @numba.njit(cache=True)
-def _ortho_point(par, stiff, s_old, du, s_new, D, tol, tab, h_ref):
+def _ortho_point(par, stiff, s_old, du, s_new, D, tol, tab, h_ref, form):
     """One orthotropic update (section 8.1). Returns STICK/SLIP/OPEN, FAILED or BEYOND."""
-    status, p, dp, ttx, tty, ktx, kty, dktx, dkty = _begin_update(stiff, s_old, du, s_new, D, tab, h_ref)
+    status, p, dp, ttx, tty, ktx, kty, dktx, dkty, lvx, lvy = _begin_update(
+        stiff, s_old, du, s_new, D, tab, h_ref, form)
     if status != STICK:
         return status
     kxn = s_old[KAPPA_X]
@@ -358,7 +397,7 @@ def _ortho_point(par, stiff, s_old, du, s_new, D, tol, tab, h_ref):
     muy, _ = _hardening(par[1], par[3], par[5], kyn)
     s_tr = math.sqrt((ttx / mux) ** 2 + (tty / muy) ** 2)
     if s_tr - p <= 0.0:  # f ≤ 0, eq. (91): stick
-        return _stick(ttx, tty, ktx, kty, dp, dktx, dkty, du, s_new, D)
+        return _stick(ttx, tty, ktx, kty, dp, dktx, dkty, lvx, lvy, s_new, D)
     # slip: backward-Euler return mapping; ψ(λ) = p/S - 1 increases from ψ(0) < 0 to +∞
     wk = np.empty(_NE)
     r = par[6] * (math.log(muy) - math.log(mux))
@@ -432,7 +471,7 @@ def _ortho_point(par, stiff, s_old, du, s_new, D, tol, tab, h_ref):
         dr = -(-a21 * b1[m] + a11 * b2[m]) / det
         sens[0, m] = wk[_E_TX_LAM] * dlam + wk[_E_TX_R] * dr + ex[m]
         sens[1, m] = wk[_E_TY_LAM] * dlam + wk[_E_TY_R] * dr + ey[m]
-    _assemble_tangent(sens, ktx, kty, dp, dktx, dkty, du, D)
+    _assemble_tangent(sens, ktx, kty, dp, dktx, dkty, lvx, lvy, D)
     return SLIP
 
 
@@ -451,15 +490,16 @@ def _iso_eval(lam, ttx, tty, ktx, kty, kapn, par):
 
 
 @numba.njit(cache=True)
-def _iso_point(par, stiff, s_old, du, s_new, D, tol, tab, h_ref):
+def _iso_point(par, stiff, s_old, du, s_new, D, tol, tab, h_ref, form):
     """One isotropic update (section 8.2). Returns STICK/SLIP/OPEN, FAILED or BEYOND."""
-    status, p, dp, ttx, tty, ktx, kty, dktx, dkty = _begin_update(stiff, s_old, du, s_new, D, tab, h_ref)
+    status, p, dp, ttx, tty, ktx, kty, dktx, dkty, lvx, lvy = _begin_update(
+        stiff, s_old, du, s_new, D, tab, h_ref, form)
     if status != STICK:
         return status
     kapn = s_old[KAPPA]
     mu0, _ = _hardening(par[0], par[1], par[2], kapn)
     if math.sqrt(ttx * ttx + tty * tty) - mu0 * p <= 0.0:  # f ≤ 0, eq. (120): stick
-        return _stick(ttx, tty, ktx, kty, dp, dktx, dkty, du, s_new, D)
+        return _stick(ttx, tty, ktx, kty, dp, dktx, dkty, lvx, lvy, s_new, D)
     lam = 0.0
     lo = 0.0
     hi = -1.0
@@ -522,27 +562,28 @@ def _iso_point(par, stiff, s_old, du, s_new, D, tol, tab, h_ref):
         dlam = -b[m] / f_lam
         sens[0, m] = tx_lam * dlam + ex[m]
         sens[1, m] = ty_lam * dlam + ey[m]
-    _assemble_tangent(sens, ktx, kty, dp, dktx, dkty, du, D)
+    _assemble_tangent(sens, ktx, kty, dp, dktx, dkty, lvx, lvy, D)
     return SLIP
 
 
 @numba.njit(cache=True)
-def _ortho_kernel(par, stiff, s_old, du, s_new, D, status, tol, tab, h_ref):
+def _ortho_kernel(par, stiff, s_old, du, s_new, D, status, tol, tab, h_ref, form):
     for i in range(s_old.shape[0]):
-        status[i] = _ortho_point(par, stiff[i], s_old[i], du[i], s_new[i], D[i], tol, tab, h_ref)
+        status[i] = _ortho_point(par, stiff[i], s_old[i], du[i], s_new[i], D[i], tol, tab, h_ref, form)
 
 
 @numba.njit(cache=True)
-def _iso_kernel(par, stiff, s_old, du, s_new, D, status, tol, tab, h_ref):
+def _iso_kernel(par, stiff, s_old, du, s_new, D, status, tol, tab, h_ref, form):
     for i in range(s_old.shape[0]):
-        status[i] = _iso_point(par, stiff[i], s_old[i], du[i], s_new[i], D[i], tol, tab, h_ref)
+        status[i] = _iso_point(par, stiff[i], s_old[i], du[i], s_new[i], D[i], tol, tab, h_ref, form)
 
 
 @numba.njit(cache=True)
-def _no_limit_point(par, stiff, s_old, du, s_new, D, tab, h_ref):
+def _no_limit_point(par, stiff, s_old, du, s_new, D, tab, h_ref, form):
     """No friction limit: par[0] = 0 frictionless (t_T = 0, D = diag(0, 0, k_N)); par[0] = 1
     no slip (the elastic law (93)-(94) alone: the stick branch at every closed point)."""
-    status, p, dp, ttx, tty, ktx, kty, dktx, dkty = _begin_update(stiff, s_old, du, s_new, D, tab, h_ref)
+    status, p, dp, ttx, tty, ktx, kty, dktx, dkty, lvx, lvy = _begin_update(
+        stiff, s_old, du, s_new, D, tab, h_ref, form)
     if status != STICK:
         return status
     if par[0] == 0.0:
@@ -550,10 +591,10 @@ def _no_limit_point(par, stiff, s_old, du, s_new, D, tab, h_ref):
         s_new[T_Y] = 0.0
         D[2, 2] = dp
         return SLIP
-    return _stick(ttx, tty, ktx, kty, dp, dktx, dkty, du, s_new, D)
+    return _stick(ttx, tty, ktx, kty, dp, dktx, dkty, lvx, lvy, s_new, D)
 
 
 @numba.njit(cache=True)
-def _no_limit_kernel(par, stiff, s_old, du, s_new, D, status, tol, tab, h_ref):
+def _no_limit_kernel(par, stiff, s_old, du, s_new, D, status, tol, tab, h_ref, form):
     for i in range(s_old.shape[0]):
-        status[i] = _no_limit_point(par, stiff[i], s_old[i], du[i], s_new[i], D[i], tab, h_ref)
+        status[i] = _no_limit_point(par, stiff[i], s_old[i], du[i], s_new[i], D[i], tab, h_ref, form)

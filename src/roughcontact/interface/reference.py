@@ -1,7 +1,9 @@
 """Slow twins of the interface kernels (:mod:`.kernels`), for the tests: the tabulated normal
 law as power-basis polynomials (:func:`reference_closure_law`) and the friction update as the
 primitive backward-Euler system (t_x, t_y, γ, κ…) solved with complex-step Jacobians
-(:func:`reference_update`), one point at a time. Pure Python / NumPy / SciPy.
+(:func:`reference_update`), one point at a time, for each tangential form of (93)
+(friction.py, "Tangential forms"; written here from their definitions, not from the kernel's
+arrangement). Pure Python / NumPy / SciPy.
 """
 
 from __future__ import annotations
@@ -10,7 +12,7 @@ import math
 
 import numpy as np
 
-from .friction import OrthotropicHardening, _as_model, limit_function
+from .friction import TANGENTIAL_FORMS, OrthotropicHardening, _as_model, limit_function
 from .kernels import (
     DISSIPATION, KAPPA, KAPPA_X, KAPPA_Y, OPEN, SLIP, STICK, T_N, T_X, T_Y, U_N, UP_X, UP_Y,
 )
@@ -47,14 +49,39 @@ def _ref_mu(mu_m, mu_o, n, kappa):
     return mu_m * (1.0 - (1.0 - mu_o) * np.exp(-n * kappa))  # eq. (89)/(90)/(119)
 
 
-def _ref_residual(model, X, theta, s_old, stiffness, sx, sy):
+def _ref_trial(tangential, s_old, stiffness):
+    """θ = (Δu_Tx, Δu_Ty, Δu_N) -> (t^tr_x, t^tr_y, p_N, K_Tx, K_Ty) of the tangential form
+    (complex-step capable): the trial tractions and the stiffness the return mapping uses.
+    ``stiffness(u_N)`` -> (p_N, k_N, k_Tx, k_Ty); K_T(u_N,n) from the start closure (it raises
+    beyond the table); an open start state (K_T(u_N,n) = 0) has t_n = 0 and u^e_T,n = 0."""
+    if tangential not in TANGENTIAL_FORMS:
+        raise ValueError(f"tangential must be one of {', '.join(TANGENTIAL_FORMS)}, got {tangential!r}")
+    u0 = s_old[U_N]
+    t_n = np.array([s_old[T_X], s_old[T_Y]])
+    if tangential != "incremental-end":
+        k_n = np.array([float(np.real(k)) for k in stiffness(u0)[2:]])  # K_T(u_N,n)
+        t_n = np.where(k_n > 0.0, t_n, 0.0)
+        ue_n = np.where(k_n > 0.0, t_n / np.where(k_n > 0.0, k_n, 1.0), 0.0)  # u^e_T,n = t_n/K_T,n
+
+    def trial(theta):
+        p, _, kTx, kTy = stiffness(u0 + theta[2])
+        k_end = np.array([kTx, kTy])
+        du_T = np.asarray(theta[:2])
+        if tangential == "incremental-end":  # t^tr = t_n + K_T(u_N,n+1) Δu_T, eq. (93)
+            tt, k = t_n + k_end * du_T, k_end
+        elif tangential == "incremental-start":  # t^tr = t_n + K_T(u_N,n) Δu_T
+            tt, k = t_n + k_n * du_T, k_n + 0.0 * du_T
+        else:  # secant: t^tr = K_T(u_N,n+1) (u^e_T,n + Δu_T)
+            tt, k = k_end * (ue_n + du_T), k_end
+        return tt[0], tt[1], p, k[0], k[1]
+    return trial
+
+
+def _ref_residual(model, X, theta, s_old, trial, sx, sy):
     """Primitive backward-Euler residual (complex-step capable).
     Orthotropic X = (t_x, t_y, γ, κ_x, κ_y); isotropic X = (t_x, t_y, γ, κ).
-    ``stiffness(u_N)`` -> (p_N, k_N, k_Tx, k_Ty) at the end-of-step closure."""
-    dux, duy, dun = theta
-    p, _, kTx, kTy = stiffness(s_old[U_N] + dun)
-    ttx = s_old[T_X] + kTx * dux
-    tty = s_old[T_Y] + kTy * duy
+    ``trial(θ)`` -> (t^tr_x, t^tr_y, p_N, K_Tx, K_Ty) of the tangential form (_ref_trial)."""
+    ttx, tty, p, kTx, kTy = trial(theta)
     if isinstance(model, OrthotropicHardening):
         tx, ty, gam, kx, ky = X
         mux = _ref_mu(model.mu_m_x, model.mu_o_x, model.n_x, kx)
@@ -170,9 +197,9 @@ def _ref_stiffness(k_N, k_Tx, k_Ty):
     return lambda u: (kN * u, kN, kTx, kTy)
 
 
-def reference_update(model, state, du, k_N, k_Tx=None, k_Ty=None):
+def reference_update(model, state, du, k_N, k_Tx=None, k_Ty=None, *, tangential="incremental-end"):
     """Slow single-point twin of :func:`update` (pure Python/NumPy/SciPy), with the same
-    stiffness inputs (constants or an InterfaceLaw as ``k_N``).
+    stiffness inputs (constants or an InterfaceLaw as ``k_N``) and tangential forms.
 
     Solves the primitive backward-Euler system in (t_x, t_y, γ, κ...) with the potential (98)
     written through ν_x, ν_y explicitly, by Newton with complex-step Jacobians from a nested
@@ -187,26 +214,26 @@ def reference_update(model, state, du, k_N, k_Tx=None, k_Ty=None):
     D = np.zeros((3, 3))
     u_n = s_old[U_N] + d[2]
     s[U_N] = u_n
-    p, kN, kTx, kTy = (float(np.real(v)) for v in stiffness(u_n))
+    p, kN = (float(np.real(v)) for v in stiffness(u_n)[:2])
     if p <= 0.0:  # open (constant law: u_N ≤ 0)
         s[T_N] = s[T_X] = s[T_Y] = 0.0
         return s, D, OPEN
     s[T_N] = p
-    ttx, tty = s_old[T_X] + kTx * d[0], s_old[T_Y] + kTy * d[1]
-    trial = s.copy()
-    trial[T_X], trial[T_Y] = ttx, tty
-    if limit_function(model, trial) <= 0.0:
+    trial = _ref_trial(tangential, s_old, stiffness)
+    ttx, tty, _, kTx, kTy = (float(np.real(v)) for v in trial(d))
+    s_tr = s.copy()
+    s_tr[T_X], s_tr[T_Y] = ttx, tty
+    if limit_function(model, s_tr) <= 0.0:
         s[T_X], s[T_Y] = ttx, tty
 
         def trial_tractions(theta):
-            pc, _, kx, ky = stiffness(s_old[U_N] + theta[2])
-            return np.array([s_old[T_X] + kx * theta[0], s_old[T_Y] + ky * theta[1], pc])
+            return np.array(trial(theta)[:3])
         return s, _complex_jacobian(trial_tractions, d), STICK
     sx, sy = float(np.sign(ttx)), float(np.sign(tty))
     theta0 = d.astype(complex)
 
     def R(X, theta=theta0):
-        return _ref_residual(model, X, theta, s_old, stiffness, sx, sy)
+        return _ref_residual(model, X, theta, s_old, trial, sx, sy)
 
     X = _ref_initial_guess(model, s_old, ttx, tty, kTx, kTy, p)
     for _ in range(20):

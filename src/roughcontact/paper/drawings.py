@@ -17,9 +17,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..fe.element import LOBATTO4, Element
+from ..fe.element import LOBATTO4, QUAD9, QUAD16, Element
 from ..fe.interface_element import InterfaceElement
-from ..fe.mesh import Mesh, local_face
+from ..fe.mesh import CellBlock, InterfaceBlock, Mesh, local_face
 from .plots import new_figure, style
 
 __all__ = [
@@ -358,47 +358,161 @@ def boundary_edges(mesh: Mesh, view=None, max_edges: int | None = None) -> list[
 
 def mesh_figure(mesh: Mesh, *, title: str, supports=(), loads=(), highlight_interface: bool = True,
                 max_edges: int = 6000, elev: float = 20.0, azim: float = -60.0, figsize=(8.0, 6.0),
-                zoom: float = 1.1):
+                zoom: float = 1.1, detail=None, lift: float = 0.0, show_transition: bool = False):
     """A mesh in its true proportions (mm): the element edges on the surface turned to the
-    viewer, the interface faces shaded, ``supports`` [(node set, label)] as triangles at the
-    set's nodes (and a plate beside a planar set), ``loads`` [((x, y, z), (fx, fy, fz), label)]
-    as arrows ending at the point. ``max_edges``: see :func:`boundary_edges`; ``zoom``: of the
-    3D box in its axes (matplotlib's; above ~1.1 a cube-like body is clipped)."""
-    from mpl_toolkits.mplot3d.art3d import Line3DCollection
+    viewer, the interface faces shaded, ``supports`` [(node set or tuple of node sets, label)]
+    as triangles at the sets' nodes (and a plate beside a planar set; a tuple shares one colour
+    and one legend entry), ``loads`` [((x, y, z), (fx, fy, fz), label)] as arrows ending at the
+    point. ``max_edges``: see :func:`boundary_edges`; ``zoom``: of the 3D box in its axes
+    (matplotlib's; above ~1.1 a cube-like body is clipped).
 
-    x = mesh.points
-    size = float(np.ptp(x, axis=0).max())
+    ``detail`` ((x0, y0, z0), (x1, y1, z1)) [mm]: a second panel, on the right, drawing only the
+    cells inside that box at its own scale (a small body on a large one, e.g. a punch on its
+    foundation), with the interface nodes marked and no supports; the box is outlined (dashed)
+    on the left. ``lift`` [mm]: in the detail, the body on side B of the interfaces is drawn
+    that much higher (an exploded view: the interface, of zero thickness, is seen between the
+    bodies), dotted lines joining the outer corners of side A and side B. ``show_transition``:
+    shade the visible sides of the transition elements (HEX21/HEX28), i.e. the layer's thickness."""
+    panels = [(mesh, (0.0, 0.12, 1.0, 0.8))]
+    if detail is not None:
+        lo, hi = (np.asarray(v, dtype=float) for v in detail)
+        panels = [(mesh, (0.0, 0.13, 0.52, 0.76)), (_clip(mesh, lo, hi, lift), (0.48, 0.13, 0.52, 0.76))]
     with style():
         fig = new_figure(figsize=figsize)
-        ax = _axes3d(fig, elev, azim, rect=(0.0, 0.12, 1.0, 0.8))
-        lines = [x[p] for p in boundary_edges(mesh, _view_vector(elev, azim), max_edges)]
-        ax.add_collection3d(Line3DCollection(lines, colors=_EDGE_COLOR, linewidths=0.6, zorder=2, gid="edges"))
-        if highlight_interface:
-            for block in mesh.interfaces:
-                order = np.concatenate([p[:-1] for p in _side_paths(block.element.face)])
-                _polygon(ax, x[block.side("B")[:, order]], color=_CONTACT_COLOR, alpha=0.55, zorder=1,
-                         gid="interface-face", label=f"interface elements '{block.name}' ({len(block.cells)})")
-        extent = [x]
-        for k, (name, label) in enumerate(supports):
-            _support(ax, mesh, name, label, size, _view_vector(elev, azim), color=("#1b4f72", "#7d3c98", "#1e8449")[k % 3])
-        for k, (point, force, label) in enumerate(loads):
-            extent.append(_load(ax, point, force, label, 0.2 * size, gid=f"load:{k}"))
-        lo, hi = np.min(np.vstack(extent), axis=0), np.max(np.vstack(extent), axis=0)
-        pad = 0.04 * size
-        _limits(ax, lo - pad, hi + pad, zoom=zoom)
+        for k, (m, rect) in enumerate(panels):
+            ax = _axes3d(fig, elev, azim, rect=rect)
+            lifted = [(np.add(p, (0.0, 0.0, lift)), f, t) for p, f, t in loads] if k else loads
+            _mesh_panel(ax, m, () if k else supports, lifted, highlight_interface, max_edges, elev, azim, zoom,
+                        nodes=k > 0, transition=show_transition)
+        if detail is not None:
+            _box_outline(fig.axes[0], lo, hi)
+            if lift:
+                _pairs(fig.axes[1], panels[1][0], f"interface side A ↔ B (detail: B's body drawn {lift:g} mm higher)")
         fig.suptitle(title, y=0.97)
-        if ax.get_legend_handles_labels()[0]:
-            fig.legend(loc="lower center", fontsize=8, ncol=2, bbox_to_anchor=(0.5, 0.02))
+        handles = {}
+        for ax in fig.axes:  # one legend entry per label over the panels
+            for h, text in zip(*ax.get_legend_handles_labels()):
+                handles.setdefault(text, h)
+        if handles:
+            fig.legend(list(handles.values()), list(handles), loc="lower center", fontsize=8, ncol=2,
+                       bbox_to_anchor=(0.5, 0.02))
         fig.text(0.99, 0.005, f"{mesh.n_nodes} nodes, {sum(len(b.cells) for b in mesh.blocks)} cells; mm",
                  ha="right", va="bottom", fontsize=7, color="0.4")
     return fig
 
 
-def _support(ax, mesh: Mesh, name: str, label: str, size: float, view, *, color, max_markers: int = 30):
+def _mesh_panel(ax, mesh: Mesh, supports, loads, highlight_interface, max_edges, elev, azim, zoom, *, nodes=False,
+                transition=False):
+    """One view of ``mesh`` (see :func:`mesh_figure`); ``nodes``: mark the interface nodes;
+    ``transition``: shade the transition layer's sides."""
+    from mpl_toolkits.mplot3d.art3d import Line3DCollection
+
+    x = mesh.points
+    used = np.unique(np.concatenate([b.cells.ravel() for b in mesh.blocks]))
+    size = float(np.ptp(x[used], axis=0).max())
+    view = _view_vector(elev, azim)
+    lines = [x[p] for p in boundary_edges(mesh, view, max_edges)]
+    ax.add_collection3d(Line3DCollection(lines, colors=_EDGE_COLOR, linewidths=0.6, zorder=2, gid="edges"))
+    if transition:
+        _transition_band(ax, mesh, view)
+    for block in mesh.interfaces if highlight_interface else ():
+        order = np.concatenate([p[:-1] for p in _side_paths(block.element.face)])
+        _polygon(ax, x[block.side("A")[:, order]], color=_CONTACT_COLOR, alpha=0.55, zorder=1,
+                 gid="interface-face", label=f"interface elements '{block.name}' ({len(block.cells)})")
+        if nodes:
+            on = np.unique(block.side("A"))
+            ax.scatter(*x[on].T, marker="o", s=7, color="#7e5109", depthshade=False, zorder=3,
+                       gid="interface-nodes", label=f"interface nodes ({on.size})")
+    extent = [x[used]]
+    for k, (names, label) in enumerate(supports):
+        names = (names,) if isinstance(names, str) else tuple(names)
+        color = ("#1b4f72", "#7d3c98", "#1e8449")[k % 3]
+        for j, name in enumerate(names):  # one colour and one legend entry per support
+            _support(ax, mesh, name, label if j == 0 else None, size, view, color=color, shown=", ".join(names))
+    for k, (point, force, label) in enumerate(loads):
+        extent.append(_load(ax, point, force, label, 0.2 * size, gid=f"load:{k}"))
+    lo, hi = np.min(np.vstack(extent), axis=0), np.max(np.vstack(extent), axis=0)
+    _limits(ax, lo - 0.04 * size, hi + 0.04 * size, zoom=zoom)
+
+
+def _transition_band(ax, mesh: Mesh, view):
+    """The outer lateral faces (normal ⟂ z, turned to ``view``) of the transition elements
+    (a QUAD9/QUAD16 contact face: HEX21, HEX28), lightly shaded: the layer on the bodies' sides."""
+    blocks = [b for b in mesh.blocks if b.element.face_element in (QUAD9, QUAD16) and len(b.cells)]
+    if not blocks:
+        return
+    layer = np.unique(np.concatenate([b.cells.ravel() for b in blocks]))
+    polygons = []
+    for face, g in _boundary_faces(mesh):
+        x = mesh.points[g[:, :4]]
+        n = np.cross(x[:, 1] - x[:, 0], x[:, 3] - x[:, 0])
+        n /= np.linalg.norm(n, axis=1, keepdims=True)
+        sel = np.all(np.isin(g, layer), axis=1) & (np.abs(n[:, 2]) < 1e-9) & (n @ view > 0)
+        order = np.concatenate([p[:-1] for p in _side_paths(face)])
+        polygons += list(mesh.points[g[sel][:, order]])
+    if polygons:
+        names = "/".join(sorted({b.element.name for b in blocks}))
+        _polygon(ax, polygons, color="#5dade2", alpha=0.35, zorder=1, gid="transition-layer",
+                 label=f"transition elements ({names}), sides")
+
+
+def _clip(mesh: Mesh, lo, hi, lift: float = 0.0) -> Mesh:
+    """The cells and interface elements of ``mesh`` with every node inside the box lo..hi [mm]
+    (node sets cut to the nodes of those cells; all points kept, so indices stay valid), the
+    body on side B of the interfaces moved up by ``lift`` [mm] (a body: the blocks named
+    "<body>.*" as :func:`.mesh.merge` names them)."""
+    tol = 1e-9 * float(np.ptp(mesh.points, axis=0).max())
+    inside = np.all((mesh.points >= lo - tol) & (mesh.points <= hi + tol), axis=1)
+    blocks = [CellBlock(b.name, b.element, b.cells[inside[b.cells].all(axis=1)]) for b in mesh.blocks]
+    interfaces = [InterfaceBlock(i.name, i.element, i.cells[inside[i.cells].all(axis=1)]) for i in mesh.interfaces]
+    used = np.unique(np.concatenate([b.cells.ravel() for b in blocks]))
+    if used.size == 0:
+        raise ValueError(f"detail: no cell lies inside the box {lo.tolist()} .. {hi.tolist()} mm")
+    node_sets = {k: np.intersect1d(v, used) for k, v in mesh.node_sets.items()}
+    points = mesh.points.copy()
+    if lift and interfaces:
+        side_b = np.concatenate([i.side("B").ravel() for i in interfaces])
+        bodies = {b.name.split(".")[0] for b in blocks if np.isin(b.cells, side_b).any()}
+        upper = [b.cells.ravel() for b in blocks if b.name.split(".")[0] in bodies]
+        points[np.unique(np.concatenate(upper + [side_b])), 2] += lift
+    return Mesh(points, blocks, node_sets, {}, interfaces, mesh.name)
+
+
+def _pairs(ax, mesh: Mesh, label: str):
+    """Dotted lines from side A to side B at the four outer corners of each interface block;
+    ``label`` on the first (the legend's note that the drawing, not the interface, has a gap)."""
+    for block in mesh.interfaces:
+        a, b = block.side("A").ravel(), block.side("B").ravel()
+        x = mesh.points[a]
+        for sx in (-1.0, 1.0):
+            for sy in (-1.0, 1.0):
+                k = int(np.argmax(sx * x[:, 0] + sy * x[:, 1]))
+                ax.plot(*np.column_stack([mesh.points[a[k]], mesh.points[b[k]]]), color="0.35",
+                        linestyle=(0, (1, 2)), linewidth=0.9, zorder=2, gid="pair", label=label)
+                label = "_nolegend_"
+
+
+def _box_outline(ax, lo, hi):
+    """The 12 edges of the box lo..hi, dashed (gid "detail-box")."""
+    for n, (axis, fixed) in enumerate(_cube_edges()):
+        ends = np.empty((2, 3))
+        ends[:, axis] = lo[axis], hi[axis]
+        for k, s in fixed.items():
+            ends[:, k] = lo[k] if s < 0 else hi[k]
+        ax.plot(*ends.T, color="0.2", linestyle=(0, (4, 3)), linewidth=0.9, zorder=3, gid="detail-box",
+                label="detail (right panel)" if n == 0 else "_nolegend_")
+
+
+def _support(ax, mesh: Mesh, name: str, label: str | None, size: float, view, *, color, shown: str | None = None,
+             max_markers: int = 30):
     """A planar node set turned away from the viewer (``view``: a vector towards the camera) as
     a thin plate just outside the body (triangles there would float in front of the body);
-    otherwise triangles at (at most ``max_markers`` of) its nodes."""
+    otherwise triangles at (at most ``max_markers`` of) its nodes. The legend reads
+    "label (shown)" (``shown`` defaults to the set's name); no entry if ``label`` is None."""
     pts = mesh.points[mesh.node_sets[name]]
+    if not len(pts):
+        return
+    shown = name if shown is None else shown
     span = np.ptp(pts, axis=0)
     axis = int(np.argmin(span))
     side = np.sign(pts[0, axis] - mesh.points[:, axis].mean()) or -1.0  # away from the body's centre
@@ -409,11 +523,11 @@ def _support(ax, mesh: Mesh, name: str, label: str, size: float, view, *, color,
         corners[:, axis] = pts[0, axis] + side * 0.015 * size
         corners[:, u], corners[:, v] = (lo[u], hi[u], hi[u], lo[u]), (lo[v], lo[v], hi[v], hi[v])
         _polygon(ax, [corners], color=color, alpha=0.3, gid=f"plate:{name}", zorder=0,
-                 label=f"{label} ({name}, behind)")
+                 label=f"{label} ({shown}, behind)" if label is not None else "_nolegend_")
         return
-    shown = pts[np.linspace(0, len(pts) - 1, min(len(pts), max_markers)).round().astype(int)]
-    ax.scatter(*shown.T, marker="^", s=16, color=color, depthshade=False, zorder=4, label=f"{label} ({name})",
-               gid=f"support:{name}")
+    shown_pts = pts[np.linspace(0, len(pts) - 1, min(len(pts), max_markers)).round().astype(int)]
+    ax.scatter(*shown_pts.T, marker="^", s=16, color=color, depthshade=False, zorder=4,
+               label=f"{label} ({shown})" if label is not None else "_nolegend_", gid=f"support:{name}")
 
 
 def _load(ax, point, force, label: str, length: float, *, gid: str) -> np.ndarray:

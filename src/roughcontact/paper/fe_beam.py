@@ -12,6 +12,7 @@ from typing import Any, Mapping
 
 import numpy as np
 
+from .report import md_escape
 from .verify import NOT_REPRODUCED, REPRODUCED, Check, claim_id, numerics_id
 
 __all__ = ["table4_results", "table4_claims", "equilibrium_checks", "study_checks", "QUANTITIES"]
@@ -217,31 +218,5 @@ def render_study_markdown(rows: list[dict], checks: list[Check], provenance: Map
         lines.append(f"| {r['family']} | {r['n_x']} × {r['n_z']} | {r['dofs']} | {r['interface_points']} "
                      f"| {r['u_N_centre_um']:+.5f} | {r['u_N_end_um']:+.5f} | {r['seconds']:.1f} |")
     lines += ["", "## Checks", "", "| check | verdict | detail |", "|---|---|---|"]
-    lines += [f"| `{c.id}` | {c.verdict} | {c.detail} |" for c in checks]
-    return "\n".join(lines) + "\n"
-
-
-def render_benchmark_markdown(rows: list[dict], jobs: list[dict], machine: Mapping[str, Any]) -> str:
-    """Speed and size of every beam run (dofs, interface points, Newton iterations per load
-    level, the solve's time inside its job) and of every job (one per case and element family:
-    wall time, CPU time and peak memory from Snakemake's benchmark — interpreter, imports,
-    normal-law tables, the case's solves and files)."""
-    lines = ["# Example 9.1: speed and size of the FE runs", "",
-             f"Measured by the workflow on {machine.get('cpu', '?')}, {machine.get('cores', '?')} cores, load "
-             f"average at the report {machine.get('loadavg', '?')}; jobs run two at a time on two cores. "
-             "*solve*: mesh, assembly and the 17 load levels of one run (Newton, condensed bulk, one BLAS thread).", "",
-             "| run | dofs | interface points | Newton iterations (per load level) | solve [s] |",
-             "|---|---:|---:|---|---:|"]
-    for r in sorted(rows, key=lambda r: r["run"]):
-        lines.append(f"| {r['run']} | {r['dofs']} | {r['interface_points']} | {r['iterations_total']} "
-                     f"({' '.join(map(str, r['iterations']))}) | {r['seconds']:.2f} |")
-    lines += ["", "| job (family-case) | runs | wall [s] | CPU [s] | peak RSS [MB] |", "|---|---:|---:|---:|---:|"]
-    for j in sorted(jobs, key=lambda j: j["job"]):
-        lines.append(f"| {j['job']} | {j['runs']} | {j['wall_s']:.1f} | {j['cpu_s']:.1f} | {j['max_rss_mb']:.0f} |")
-    main = [r for r in rows if r["run"].endswith("-main")]
-    if main:
-        worst = max(main, key=lambda r: r["seconds"])
-        lines += ["", f"Table 4's runs (main mesh): at most {worst['seconds']:.2f} s of solve per case ({worst['run']}); "
-                      f"all FE jobs together {sum(j['wall_s'] for j in jobs):.0f} s of wall time and "
-                      f"{sum(j['cpu_s'] for j in jobs):.0f} s of CPU. Goal of issue 10: ≤ 30 s per beam case."]
+    lines += [f"| `{c.id}` | {c.verdict} | {md_escape(c.detail)} |" for c in checks]
     return "\n".join(lines) + "\n"

@@ -16,7 +16,7 @@ import numpy as np
 
 __all__ = [
     "STYLE", "style", "new_figure", "save", "fig3", "fig4", "fig5", "fig6", "stiffness_vs_pressure",
-    "stiffness_sensitivity", "fig9", "slip_hardening", "friction_cases", "fig13",
+    "stiffness_sensitivity", "fig9", "slip_hardening", "friction_cases", "fig13", "punch_slips",
 ]
 
 #: rcParams of every figure of the project.
@@ -360,4 +360,56 @@ def fig13(profiles: Mapping[str, tuple], printed: Mapping[str, tuple] | None = N
         ax.set_title(title or "Fig. 13: interface deflection along the beam (elastic law)")
         ax.legend(loc="upper left", fontsize=8, ncol=1)
         fig.tight_layout()
+    return fig
+
+
+def punch_slips(panels: Mapping[str, Mapping[str, dict]], *, title: str):
+    """Figs 18/19: directions of the plastic slips at the contact points of the quarter punch.
+    ``panels``: row label → column label → dict(x, y [mm], ux, uy [µm], status). Slipped points
+    are unit arrows coloured by |u_T^p| [µm] (a shared log scale); stick points are dots,
+    open points crosses."""
+    from matplotlib.colors import LogNorm
+
+    rows, cols = list(panels), list(next(iter(panels.values())))
+    mags = np.concatenate([np.hypot(p["ux"], p["uy"]) for r in panels.values() for p in r.values()])
+    pos = mags[mags > 0]
+    norm = LogNorm(vmin=pos.min(), vmax=pos.max()) if pos.size and pos.max() > pos.min() else None
+    fig = new_figure(figsize=(3.1 * len(cols) + 1.2, 3.0 * len(rows) + 0.9))
+    with style():
+        axes = fig.subplots(len(rows), len(cols), squeeze=False, sharex=True, sharey=True)
+        quiver = None
+        for i, r in enumerate(rows):
+            for j, c in enumerate(cols):
+                ax, p = axes[i][j], panels[r][c]
+                m = np.hypot(p["ux"], p["uy"])
+                slip = m > 0
+                stick = (~slip) & (p["status"] != 2)
+                ax.plot(p["x"][stick], p["y"][stick], ".", color="0.45", ms=4, label="stick")
+                ax.plot(p["x"][p["status"] == 2], p["y"][p["status"] == 2], "x", color="0.45", ms=4, label="open")
+                if np.any(slip):
+                    quiver = ax.quiver(p["x"][slip], p["y"][slip], p["ux"][slip] / m[slip], p["uy"][slip] / m[slip],
+                                       m[slip], norm=norm, cmap="viridis", scale=22, width=0.012, pivot="tail")
+                ax.set_aspect("equal")
+                ax.set_xlim(-0.6, p["x"].max() + 1.2)
+                ax.set_ylim(-0.6, p["y"].max() + 1.2)
+                ax.grid(False)
+                if i == 0:
+                    ax.set_title(c)
+                if j == 0:
+                    ax.set_ylabel(f"{r}\ny [mm]")
+                if i == len(rows) - 1:
+                    ax.set_xlabel("x [mm]")
+                n_slip = int(np.count_nonzero(slip))
+                ax.text(0.02, 0.98, f"{n_slip} of {m.size} slip", transform=ax.transAxes, va="top", fontsize=8)
+        handles, labels = axes[0][0].get_legend_handles_labels()
+        fig.suptitle(title)
+        fig.tight_layout(rect=(0, 0.05, 0.86, 0.97))
+        if quiver is not None:
+            from matplotlib.ticker import FormatStrFormatter, NullFormatter
+
+            cax = fig.add_axes((0.88, 0.2, 0.015, 0.6))
+            bar = fig.colorbar(quiver, cax=cax, label="|u_T^p| [µm]")
+            bar.ax.yaxis.set_major_formatter(FormatStrFormatter("%.2g"))
+            bar.ax.yaxis.set_minor_formatter(NullFormatter())
+        fig.legend(handles, labels, loc="lower center", ncol=2, fontsize=8)
     return fig

@@ -1,0 +1,35 @@
+"""The runs of one element family and reading of example 9.2 (rule fe_punch_case): each solved by
+roughcontact.fe.punch.punch_case and written as <case>.nc (the whole load history, with
+provenance), <case>.vtu and <case>_interface.vtu (the maximum load) in the job's directory."""
+
+from pathlib import Path
+
+from roughcontact import io
+from roughcontact.fe.punch import punch_case, to_dataset
+
+
+def run(runs, provenance, out_dir, log):
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    group = provenance["group"]
+    with io.log_to(log) as logger:
+        for name, run_cfg in runs.items():
+            case = name[len(group) + 1:]
+
+            def progress(k, n, inc):
+                logger.info("%s: level %d/%d: patch load %.6g N (quarter), %d Newton iterations, %d cut-backs",
+                            case, k, n, inc.level, inc.iterations, inc.cutbacks)
+
+            result = punch_case(run_cfg, progress)
+            ds = to_dataset(result)
+            logger.info("%s: D %.5g N mm, %d slipped points, %d dofs, %d contact points, %.2f s", case,
+                        ds.attrs["D_max_area_whole"], ds.attrs["slipped_points"], result.n_dofs, result.n_points,
+                        result.seconds)
+            io.write_netcdf(ds, out / f"{case}.nc", config={**provenance, "run": name},
+                            settings={"solver": "Newton (roughcontact.fe.solver)", "rule": result.spec.rule})
+            result.write_vtu(out / f"{case}.vtu")
+
+
+if "snakemake" in globals():
+    sm = snakemake  # noqa: F821
+    run(sm.params.runs, sm.params.provenance, sm.output[0], sm.log[0])
