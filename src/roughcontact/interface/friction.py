@@ -391,8 +391,10 @@ def _prepare(state, du, stiffness):
     if np.any(s[..., KAPPA_X] < 0.0) or np.any(s[..., KAPPA_Y] < 0.0):
         raise ValueError("accumulated slips (state[..., 6:8]) must be >= 0")
     n = int(np.prod(shape))
-    s2 = np.ascontiguousarray(np.broadcast_to(s, shape + (NSTATE,)).reshape(n, NSTATE))
-    d2 = np.ascontiguousarray(np.broadcast_to(d, shape + (3,)).reshape(n, 3))
+    # writable C copies: numba types a read-only array (a broadcast view) apart from a writable
+    # one, and one signature per kernel keeps its shared on-disk cache safe
+    s2 = np.array(np.broadcast_to(s, shape + (NSTATE,)).reshape(n, NSTATE), order="C")
+    d2 = np.array(np.broadcast_to(d, shape + (3,)).reshape(n, 3), order="C")
     st = np.empty((n, 3))
     for j, a in enumerate(stiff):
         st[:, j] = np.broadcast_to(a, shape).reshape(n)
