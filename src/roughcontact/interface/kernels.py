@@ -385,6 +385,34 @@ def _assemble_tangent(sens, ktx, kty, dp, dktx, dkty, lvx, lvy, D):
 
 
 @numba.njit(cache=True)
+def _safeguarded_step(lam, psi, dpsi, lo, hi, first, tol):
+    """One step of the bracketed Newton iteration for the plastic multiplier λ ≥ 0 of both
+    return mappings, on ψ(λ) increasing from ψ(0) < 0 (hi < 0: no upper bracket yet): update
+    the bracket, take the Newton step when it stays inside, else bisect, else ``first`` (the
+    first guess, used at λ = 0) or 2λ. Returns (λ_new, lo, hi, done)."""
+    if psi < 0.0:
+        lo = lam
+    else:
+        hi = lam
+    newton = False
+    cand = 0.0
+    if dpsi > 0.0:
+        cand = lam - psi / dpsi
+        if cand > lo and (hi < 0.0 or cand < hi):
+            newton = True
+    if not newton:
+        if hi >= 0.0:
+            cand = 0.5 * (lo + hi)
+        elif lam == 0.0:
+            cand = first
+        else:
+            cand = 2.0 * lam
+    done = (newton and abs(cand - lam) <= tol * cand) or \
+        (hi >= 0.0 and hi - lo <= 4.0 * 2.220446049250313e-16 * hi)
+    return cand, lo, hi, done
+
+
+@numba.njit(cache=True)
 def _ortho_point(par, stiff, s_old, du, s_new, D, tol, tab, h_ref, form):
     """One orthotropic update (section 8.1). Returns STICK/SLIP/OPEN, FAILED or BEYOND."""
     status, p, dp, ttx, tty, ktx, kty, dktx, dkty, lvx, lvy = _begin_update(
@@ -416,25 +444,8 @@ def _ortho_point(par, stiff, s_old, du, s_new, D, tol, tab, h_ref, form):
         if psi == 0.0:
             status = SLIP
             break
-        if psi < 0.0:
-            lo = lam
-        else:
-            hi = lam
-        newton = False
-        if dpsi > 0.0:
-            cand = lam - psi / dpsi
-            if cand > lo and (hi < 0.0 or cand < hi):
-                newton = True
-        if not newton:
-            if hi >= 0.0:
-                cand = 0.5 * (lo + hi)
-            elif lam == 0.0:
-                cand = (s / p - 1.0) / max(ktx * wk[_E_WX], kty * wk[_E_WY])
-            else:
-                cand = 2.0 * lam
-        done = (newton and abs(cand - lam) <= tol * cand) or \
-            (hi >= 0.0 and hi - lo <= 4.0 * 2.220446049250313e-16 * hi)
-        lam = cand
+        first = (s / p - 1.0) / max(ktx * wk[_E_WX], kty * wk[_E_WY]) if lam == 0.0 else 0.0
+        lam, lo, hi, done = _safeguarded_step(lam, psi, dpsi, lo, hi, first, tol)
         if done:
             r, fail = _ortho_solve_r(lam, r, ttx, tty, ktx, kty, kxn, kyn, par, wk, 1e-14)
             if not fail:
@@ -512,25 +523,8 @@ def _iso_point(par, stiff, s_old, du, s_new, D, tol, tab, h_ref, form):
         if psi == 0.0:
             status = SLIP
             break
-        if psi < 0.0:
-            lo = lam
-        else:
-            hi = lam
-        newton = False
-        if dpsi > 0.0:
-            cand = lam - psi / dpsi
-            if cand > lo and (hi < 0.0 or cand < hi):
-                newton = True
-        if not newton:
-            if hi >= 0.0:
-                cand = 0.5 * (lo + hi)
-            elif lam == 0.0:
-                cand = (t / (mu * p) - 1.0) / max(ktx, kty)
-            else:
-                cand = 2.0 * lam
-        done = (newton and abs(cand - lam) <= tol * cand) or \
-            (hi >= 0.0 and hi - lo <= 4.0 * 2.220446049250313e-16 * hi)
-        lam = cand
+        first = (t / (mu * p) - 1.0) / max(ktx, kty) if lam == 0.0 else 0.0
+        lam, lo, hi, done = _safeguarded_step(lam, psi, dpsi, lo, hi, first, tol)
         if done:
             status = SLIP
             break
