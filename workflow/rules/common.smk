@@ -257,28 +257,33 @@ def _punch_run(family, case, *overrides):
     return run
 
 
+def _punch_group(group, family, cases, overrides, inherited_bound=None):
+    """The runs of one job: ``cases`` of ``family`` with the run overrides (the last one is the
+    job's own), each naming the frictionless run of its bound: the job's own frictionless run
+    where the last override changes the frictionless problem (or nothing is inherited), else
+    ``inherited_bound``."""
+    own = inherited_bound is None or bool(set(overrides[-1]) - _SAME_FRICTIONLESS)
+    bound = f"{group}-frictionless" if own else inherited_bound
+    runs = {f"{group}-{c}": {**_punch_run(family, c, *overrides), "bound": bound} for c in cases}
+    if own:
+        runs[f"{group}-frictionless"] = _punch_run(family, "frictionless", *overrides)
+    return runs
+
+
 def _punch_groups():
     """{job: {run name: run}}: per element family and reading, cases a, b, c and the frictionless
     problem (where the reading changes it); the sensitivity's variants (case b, 21-node). Each
     frictional run names the frictionless run of its bound (``bound``)."""
     groups = {}
     for fam in FE_PUNCH["families"]:
-        for reading, over in [("main", {})] + list(FE_PUNCH["readings"].items()):
-            g = f"{fam}-{reading}"
-            own = reading == "main" or bool(set(over) - _SAME_FRICTIONLESS)
-            bound = f"{g}-frictionless" if own else f"{fam}-main-frictionless"
-            groups[g] = {f"{g}-{c}": {**_punch_run(fam, c, over), "bound": bound} for c in "abc"}
-            if own:
-                groups[g][f"{g}-frictionless"] = _punch_run(fam, "frictionless", over)
+        groups[f"{fam}-main"] = _punch_group(f"{fam}-main", fam, "abc", ({},))
+        for reading, over in FE_PUNCH["readings"].items():
+            groups[f"{fam}-{reading}"] = _punch_group(f"{fam}-{reading}", fam, "abc", (over,), f"{fam}-main-frictionless")
     sens = FE_PUNCH["sensitivity"]
     base = FE_PUNCH["readings"][sens["reading"]]
     for variant, over in sens["variants"].items():
-        g = f"quadratic-sens-{variant}"
-        own = bool(set(over) - _SAME_FRICTIONLESS)
-        bound = f"{g}-frictionless" if own else f"quadratic-{sens['reading']}-frictionless"
-        groups[g] = {f"{g}-b": {**_punch_run("quadratic", "b", base, over), "bound": bound}}
-        if own:
-            groups[g][f"{g}-frictionless"] = _punch_run("quadratic", "frictionless", base, over)
+        groups[f"quadratic-sens-{variant}"] = _punch_group(f"quadratic-sens-{variant}", "quadratic", "b", (base, over),
+                                                           f"quadratic-{sens['reading']}-frictionless")
     return groups
 
 

@@ -24,8 +24,7 @@ def run(paths, runs, cfg, expected, out, log):
         checks = verify.apply_expectations(checks, yaml.safe_load(Path(expected).read_text()))
         for c in checks:
             logger.info("%s: %s (%s) %s", c.id, c.verdict, c.status, c.detail)
-        prov = io.read_provenance(next(iter(data.values())))
-        shown = {"roughcontact": prov.get("roughcontact_version"), "commit": str(prov.get("git_commit", "unknown"))[:12]}
+        shown = report.shown_provenance(io.read_provenance(next(iter(data.values()))))
         io.write_text(out["md"], fe_beam.render_study_markdown(rows, checks, shown))
         io.write_text(out["csv"], report.render_rows_csv(rows))
         io.write_text(out["checks"], verify.checks_to_csv(checks))

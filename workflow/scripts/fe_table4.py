@@ -32,8 +32,7 @@ def run(paths, runs, cfg, paper, expected, out, log):
         checks = verify.apply_expectations(checks, yaml.safe_load(Path(expected).read_text()))
         for c in checks:
             logger.info("%s: %s (%s) %s", c.id, c.verdict, c.status, c.detail)
-        prov = io.read_provenance(next(iter(data.values())))
-        shown = {"roughcontact": prov.get("roughcontact_version"), "commit": str(prov.get("git_commit", "unknown"))[:12]}
+        shown = report.shown_provenance(io.read_provenance(next(iter(data.values()))))
         title = ("Table 4: interface deflection at the centre and the end of the beam [um], from the seated state "
                  f"(E* = {cfg['E_star']:.6g} N/mm^2, {cfg['tangential']} tangential restraint)")
         io.write_text(out["md"], report.render_table_markdown(title, checks, paper_table, models, provenance=shown))

@@ -19,8 +19,7 @@ def run(paths, runs, cfg, paper, expected, out, log):
         checks = verify.apply_expectations(checks, yaml.safe_load(Path(expected).read_text()))
         for c in checks:
             logger.info("%s: %s (%s) %s", c.id, c.verdict, c.status, c.detail)
-        prov = io.read_provenance(next(iter(data.values())))
-        shown = {"roughcontact": prov.get("roughcontact_version"), "commit": str(prov.get("git_commit", "unknown"))[:12]}
+        shown = report.shown_provenance(io.read_provenance(next(iter(data.values()))))
         title = "Table 5: the total dissipation energy D [N mm] under every reading"
         io.write_text(out["md"], report.render_table_markdown(title, checks, paper_table, models, provenance=shown))
         io.write_text(out["csv"], report.render_table_csv(checks, models))

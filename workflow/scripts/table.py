@@ -46,11 +46,7 @@ def run(scene, scene_config, models, numerics_rtol, reference_dps, production, r
         checks = verify.apply_expectations(checks, yaml.safe_load(Path(expected).read_text()))
         for c in checks:
             logger.info("%s: %s (%s) %s", c.id, c.verdict, c.status, c.detail)
-        shown = {
-            "roughcontact": provenance.get("roughcontact_version"),
-            "commit": str(provenance.get("git_commit", "unknown"))[:12],
-            "reference dps": reference_dps if ref else "none",
-        }
+        shown = {**report.shown_provenance(provenance), "reference dps": reference_dps if ref else "none"}
         io.write_text(out["md"], report.render_table_markdown(scene_config["title"], checks, paper_table, models, provenance=shown))
         io.write_text(out["csv"], report.render_table_csv(checks, models))
         io.write_text(out["checks"], verify.checks_to_csv(checks))

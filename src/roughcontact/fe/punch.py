@@ -159,16 +159,8 @@ class PunchResult:
         1 slip, 2 open) and, with a friction limit, the share of it used (utilisation) — Figs 18/19."""
         inc = self.solution.increments[self.spec.max_index if k is None else k]
         x = self.solution.model.points.x
-        material = self.solution.model.material
-        length = material.length_per_mm
-        out = {"x_mm": x[:, 0], "y_mm": x[:, 1],
-               "slip_x_um": inc.state[:, friction.UP_X] * 1000.0 / length,
-               "slip_y_um": inc.state[:, friction.UP_Y] * 1000.0 / length,
-               "t_x": inc.tractions[:, 0], "t_y": inc.tractions[:, 1], "p_N": -inc.tractions[:, 2],
-               "status": inc.status.astype(int)}
-        if isinstance(material.model, friction.OrthotropicHardening):
-            out["utilisation"] = friction.utilisation(material.model, inc.state)
-        return out
+        return {"x_mm": x[:, 0], "y_mm": x[:, 1], **_law_fields(inc.state, self.solution.model.material),
+                "status": inc.status.astype(int)}
 
     def write_vtu(self, path, points_path=None):
         """Both bodies with their displacements at the maximum load to ``path`` and the contact
@@ -181,19 +173,26 @@ class PunchResult:
                               {"x": self.solution.model.points.x, **fields}, points_path)
 
 
+def _law_fields(state: np.ndarray, material: InterfaceMaterial) -> dict[str, np.ndarray]:
+    """From law states (..., NSTATE): tractions t_x, t_y, p_N [N/mm²], plastic slips slip_x_um,
+    slip_y_um [µm] and, with a friction limit, the share of it used (utilisation)."""
+    per_um = 1000.0 / material.length_per_mm  # law length unit → µm
+    out = {"t_x": state[..., friction.T_X], "t_y": state[..., friction.T_Y], "p_N": state[..., friction.T_N],
+           "slip_x_um": state[..., friction.UP_X] * per_um, "slip_y_um": state[..., friction.UP_Y] * per_um}
+    if isinstance(material.model, friction.OrthotropicHardening):
+        out["utilisation"] = friction.utilisation(material.model, state)
+    return out
+
+
 def _history(result: "PunchResult") -> dict[str, np.ndarray]:
     """(level, point) arrays of the whole load history."""
     sol = result.solution
-    pts, length = sol.model.points, sol.model.material.length_per_mm
-    S = np.stack([inc.state for inc in sol.increments])
+    pts = sol.model.points
     seated = pts.jumps(sol.increments[0].u)
     jumps = np.stack([pts.jumps(inc.u) - seated for inc in sol.increments])
-    return {"t_x": S[..., friction.T_X], "t_y": S[..., friction.T_Y], "p_N": S[..., friction.T_N],
-            "slip_x_um": S[..., friction.UP_X] * 1000.0 / length, "slip_y_um": S[..., friction.UP_Y] * 1000.0 / length,
+    return {**_law_fields(np.stack([inc.state for inc in sol.increments]), sol.model.material),
             "jump_x_um": jumps[..., 0] * 1000.0, "jump_y_um": jumps[..., 1] * 1000.0,
-            "status": np.stack([inc.status for inc in sol.increments]).astype(np.int32),
-            **({"utilisation": friction.utilisation(sol.model.material.model, S)}
-               if isinstance(sol.model.material.model, friction.OrthotropicHardening) else {})}
+            "status": np.stack([inc.status for inc in sol.increments]).astype(np.int32)}
 
 
 def to_dataset(result: "PunchResult"):

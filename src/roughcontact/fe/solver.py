@@ -290,13 +290,12 @@ class _Condensed:
         self.n = free.size
 
     def __call__(self, points, D, r, u, level):
-        rI, rR = r[self.I], r[self.R]
         if self.X is not None:
             y = self.a0 + level * self.a1 - u[self.R] - self.X @ u[self.I]  # = K_RR⁻¹ r_R (class docstring)
         else:
-            y = self.K_RR.solve(rR)
+            y = self.K_RR.solve(r[self.R])
         A = self.S + interface_tangent(_restricted(points, self.B_I), D).toarray()
-        b = rI - self.K_IR @ y
+        b = r[self.I] - self.K_IR @ y
         du_I = la.solve(A, b, assume_a="pos" if _symmetric(D) else "gen", check_finite=True)
         du = np.empty(self.n)
         du[self.I] = du_I

@@ -28,7 +28,7 @@ from .verify import (
 )
 
 __all__ = ["render_table_markdown", "render_table_csv", "parse_errata", "render_verification_markdown", "md_escape",
-           "render_rows_csv"]
+           "render_rows_csv", "shown_provenance"]
 
 _STATUS_MARK = {
     STATUS_OK: "ok",
@@ -109,6 +109,13 @@ def render_table_markdown(
                 lines += ["", "Tolerance: " + " ".join(md_escape(" ".join(w.split())) for w in whys)]
             lines.append("")
     return "\n".join(lines).rstrip() + "\n"
+
+
+def shown_provenance(provenance: Mapping[str, Any]) -> dict[str, Any]:
+    """The provenance a generated table shows (io.read_provenance of its data): the package
+    version and the git commit, shortened to 12 characters."""
+    return {"roughcontact": provenance.get("roughcontact_version"),
+            "commit": str(provenance.get("git_commit", "unknown"))[:12]}
 
 
 def render_rows_csv(rows: Sequence[Mapping[str, Any]]) -> str:
