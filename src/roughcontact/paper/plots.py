@@ -405,10 +405,11 @@ def punch_slips(panels: Mapping[str, Mapping[str, dict]], *, title: str):
         fig.suptitle(title)
         fig.tight_layout(rect=(0, 0.05, 0.86, 0.97))
         if quiver is not None:
-            from matplotlib.ticker import FormatStrFormatter, NullFormatter
+            from matplotlib.ticker import FormatStrFormatter, LogLocator, NullFormatter
 
             cax = fig.add_axes((0.88, 0.2, 0.015, 0.6))
             bar = fig.colorbar(quiver, cax=cax, label="|u_T^p| [µm]")
+            bar.ax.yaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))  # a log range under a decade
             bar.ax.yaxis.set_major_formatter(FormatStrFormatter("%.2g"))
             bar.ax.yaxis.set_minor_formatter(NullFormatter())
         fig.legend(handles, labels, loc="lower center", ncol=2, fontsize=8)
