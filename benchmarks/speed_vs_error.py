@@ -49,6 +49,7 @@ from roughcontact import SpectralMoments  # noqa: E402
 from roughcontact.contact import elastic_contact  # noqa: E402
 from roughcontact.contact import elastoplastic_contact  # noqa: E402
 from roughcontact.integrals.rules import QuadratureSettings as QS  # noqa: E402
+from roughcontact.io import write_text  # noqa: E402
 
 SURFACES = {
     "table1": SpectralMoments(0.0625, 8e-5, 8e-4, 1.04e-6, 1.04e-4),
@@ -199,7 +200,7 @@ def _tplquad_rows(cache_path: Path, references: refs.ReferenceCache, quick: bool
                 v, dt = _timed(lambda: baselines.naive_tplquad(surface, s, quantity=quantity, kind=model,
                                                                material=mat))
             cache[key] = {"value": v, "seconds": dt, "loadavg": load, "date": time.strftime("%Y-%m-%d")}
-            cache_path.write_text(json.dumps(cache, indent=1))
+            write_text(cache_path, json.dumps(cache, indent=1))
         rec = cache[key]
         ref = refs.elastic(references, surface, s) if model == "elastic" else refs.elastoplastic(references, surface, s, PSI)
         q = ("area", "load", "stiffness").index(quantity)
@@ -230,7 +231,7 @@ def main(argv=None) -> int:
         results = json.loads((Path(args.out_dir) / "results.json").read_text())
         results["summary"] = report.summarise(results)
         report.figure(results, args.figure)
-        Path(args.report).write_text(report.markdown(results))
+        write_text(args.report, report.markdown(results))
         return 0
     quick = args.quick
     repeat = args.repeat or (3 if quick else 7)
@@ -290,11 +291,10 @@ def main(argv=None) -> int:
         "reference_fingerprint": cache.fingerprint,
     }
     results["summary"] = report.summarise(results)
-    (out_dir / "results.json").write_text(json.dumps(results, indent=1, default=float))
+    write_text(out_dir / "results.json", json.dumps(results, indent=1, default=float))
     report.write_netcdf(results, out_dir / "results.nc")
     report.figure(results, args.figure)
-    Path(args.report).parent.mkdir(parents=True, exist_ok=True)
-    Path(args.report).write_text(report.markdown(results))
+    write_text(args.report, report.markdown(results))
     if args.update_seed:
         print(f"{cache.update_seed()} references written to {refs.SEED}")
     print(f"wrote {out_dir}/results.json, results.nc, {args.figure}, {args.report} "

@@ -26,9 +26,10 @@ import os
 import platform
 import subprocess
 import sys
-import tempfile
 from pathlib import Path
 from typing import Any, Iterator, Mapping
+
+from .files import atomic_path
 
 __all__ = [
     "git_commit",
@@ -40,6 +41,7 @@ __all__ = [
     "read_netcdf",
     "read_provenance",
     "write_text",
+    "atomic_path",
     "log_to",
 ]
 
@@ -165,13 +167,6 @@ def _netcdf_attr(value: Any):
     return str(value)
 
 
-def _atomic_target(path: Path):
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".part", dir=path.parent)
-    os.close(fd)
-    return Path(tmp)
-
-
 def write_netcdf(
     ds,
     path: str | os.PathLike,
@@ -196,13 +191,8 @@ def write_netcdf(
     out.attrs = attrs
     for name in list(out.data_vars) + list(out.coords):
         out[name].attrs = {k: _netcdf_attr(v) for k, v in out[name].attrs.items()}
-    tmp = _atomic_target(path)
-    try:
+    with atomic_path(path) as tmp:
         out.to_netcdf(tmp, engine="netcdf4", format="NETCDF4")
-        os.replace(tmp, path)
-    finally:
-        if tmp.exists():
-            tmp.unlink()
     return path
 
 
@@ -235,13 +225,8 @@ def read_provenance(ds) -> dict[str, Any]:
 def write_text(path: str | os.PathLike, text: str) -> Path:
     """Write ``text`` to ``path`` atomically (temporary file + rename), creating parents."""
     path = Path(path)
-    tmp = _atomic_target(path)
-    try:
+    with atomic_path(path) as tmp:
         tmp.write_text(text, encoding="utf-8")
-        os.replace(tmp, path)
-    finally:
-        if tmp.exists():
-            tmp.unlink()
     return path
 
 

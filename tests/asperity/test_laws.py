@@ -345,3 +345,14 @@ def test_plasticity_index_of_the_captions_and_closure():
     for psi in (0.35, 0.5, 2.0):
         y = asp.yield_strength_for_plasticity_index(psi, TABLE1, E_STAR)
         assert asp.plasticity_index(TABLE1, asp.AsperityMaterial(E_STAR, y)) == pytest.approx(psi, rel=1e-14)
+
+
+@pytest.mark.parametrize("Y", [1e200, 1e-200])
+def test_material_whose_first_yield_overflows_is_refused(Y):
+    """Issue #12: Y = 1e200 (or ψ = 1e-160 through yield-from-psi) raised OverflowError in
+    (K_Y Y/E*)² of (65); now a ValueError naming the condition."""
+    with pytest.raises(ValueError, match=r"K_Y Y/E\*"):
+        asp.AsperityMaterial(E_STAR, Y)
+    y_psi = asp.yield_strength_for_plasticity_index(1e-160, TABLE1, E_STAR)
+    with pytest.raises(ValueError, match=r"K_Y Y/E\*"):
+        asp.AsperityMaterial(E_STAR, y_psi)

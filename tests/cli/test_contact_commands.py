@@ -29,7 +29,8 @@ def run(capsys, *argv):
 def run_json(capsys, *argv):
     code, out, err = run(capsys, *argv, "--json")
     assert code == 0, err
-    assert err == ""
+    # nothing on stderr but one-line warnings (results outside the model's quantitative range)
+    assert all(line.startswith("roughcontact: warning: ") for line in err.splitlines()), err
     # strict JSON: no NaN/Infinity tokens
     return json.loads(out, parse_constant=lambda tok: pytest.fail(f"non-strict token {tok}"))
 
@@ -239,6 +240,14 @@ BAD = {
     "ep wp/wc <= 1": ["elastoplastic", *_moments(), *ELASTIC, "--psi", "0.5", "--wp-over-wc", "1"],
     "ep nan c_h": ["elastoplastic", *_moments(), *ELASTIC, "--psi", "0.5", "--c-h", "nan"],
     "ep non-finite s": ["elastoplastic", *_moments(), "--E-star", E_STAR, "--s", "inf", "--psi", "0.5"],
+    # issue #12: finite inputs whose products overflow (were tracebacks, exit 1)
+    "ep psi 1e-160": ["elastoplastic", *_moments(), *ELASTIC, "--psi", "1e-160"],
+    "ep Y 1e200": ["elastoplastic", *_moments(), *ELASTIC, "--yield-strength", "1e200"],
+    "moments 1e-300": ["surface", *_moments(**{k: "1e-300" for k in M})],
+    "moments 1e300": ["surface", *_moments(**{k: "1e300" for k in M})],
+    # issue #12: no meaning (A/A0 > 1), now refused; negative values reach the library
+    "A/A0 above 1": ["elastic", *_moments(), "--E-star", E_STAR, "--s", "-5"],
+    "negative exponent moment": ["surface", *_moments(m04="-1.04e-4")],
 }
 
 
@@ -265,6 +274,34 @@ def test_bad_input_exit_2_one_line(capsys, argv):
     assert len(err.splitlines()) == 1, err
     assert err.startswith("roughcontact: error: ")
     assert "Traceback" not in err and "usage:" not in err
+
+
+def test_negative_numbers_are_values_not_options(capsys):
+    """argparse read "--s -1e6" / "--m04 -1.04e-4" as options ("expected one argument")."""
+    _, _, err = run(capsys, "surface", *_moments(m04="-1.04e-4"))
+    assert "m04 must be positive" in err
+    _, _, err = run(capsys, "elastic", *_moments(), "--E-star", E_STAR, "--s", "-1e6")
+    assert "A/A0" in err and "> 1" in err
+    data = run_json(capsys, "elastic", *_moments(), "--E-star", E_STAR, "--s", "3", "1e0")
+    assert data["s"] == [3.0, 1.0]
+
+
+def test_every_subcommand_parser_inherits_the_negative_number_rule():
+    """Fixed once in the parser class: a subcommand added later (here a new one) inherits it."""
+    parser = cli.build_parser()
+    sub = next(a for a in parser._actions if isinstance(a, cli.argparse._SubParsersAction))
+    assert all(type(p) is cli._Parser for p in sub.choices.values())
+    new = sub.add_parser("later")
+    new.add_argument("--x", type=float)
+    assert new.parse_args(["--x", "-2.5e-3"]).x == -2.5e-3
+
+
+def test_results_outside_the_model_range_warn_in_one_line(capsys):
+    code, out, err = run(capsys, "elastic", *_moments(), "--E-star", E_STAR, "--s", "-1", "--json")
+    assert code == 0 and json.loads(out)["area_fraction"][0] == pytest.approx(0.4215, rel=1e-3)
+    lines = err.splitlines()
+    assert len(lines) == 2 and all(line.startswith("roughcontact: warning: ") for line in lines)
+    assert "exceeds 0.1" in lines[0] and "s = -1 < 0" in lines[1]
 
 
 def test_library_messages_pass_through(capsys):

@@ -633,3 +633,25 @@ def test_utilisation_is_one_on_slip_below_one_in_stick(name):
 def test_utilisation_needs_a_friction_limit():
     with pytest.raises(TypeError, match="friction limit"):
         fr.utilisation(fr.Frictionless(), fr.initial_state(u_N=UN0, k_N=KN))
+
+
+@pytest.mark.parametrize("name", list(MODELS))
+def test_overflowing_increments_and_stiffnesses_are_refused(name):
+    """Issue #12: Δu_T ≥ 1e160 or k = 1e300 returned a zero traction with a non-finite tangent
+    and state; the update now refuses them (ValueError naming the overflow)."""
+    model = MODELS[name]
+    s = fr.initial_state(u_N=UN0, k_N=KN)
+    with pytest.raises(ValueError, match="overflows double precision"):
+        upd(model, s, [1e160, 0.0, 0.0])
+    with pytest.raises(ValueError, match="overflows double precision"):
+        upd(model, s, [DLIM, 0.0, 0.0], kN=1e300, kTx=1e300, kTy=1e300)
+    r = upd(model, s, [1e150, 0.0, 0.0])  # huge but representable: slides on the limit surface
+    assert np.all(np.isfinite(r.state)) and np.all(np.isfinite(r.D))
+
+
+@pytest.mark.parametrize("k_N", [-1.0, 0.0, math.nan, math.inf, [1.0, -2.0]])
+def test_initial_state_refuses_bad_normal_stiffness(k_N):
+    with pytest.raises(ValueError, match="k_N must be finite and > 0"):
+        fr.initial_state(2, u_N=UN0, k_N=k_N)
+    with pytest.raises(ValueError, match="u_N must be finite"):
+        fr.initial_state(u_N=math.nan, k_N=KN)

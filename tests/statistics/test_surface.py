@@ -247,3 +247,14 @@ def test_separation_conventions():
     s = TABLE2
     assert float(s.l_from_s(1.0)) == pytest.approx(math.sqrt(3.0))
     assert float(s.s_from_h(math.sqrt(3.0))) == pytest.approx(1.0)
+
+
+@pytest.mark.parametrize("value", ["1e-300", "1e300"])
+def test_moments_that_under_or_overflow_are_refused(value):
+    """Issue #12: all moments 1e-300 ended in ZeroDivisionError (m20² underflows), 1e300 in
+    OverflowError: valid doubles whose derived statistics are not; ValueError names it."""
+    with pytest.raises(ValueError, match="under- or overflow in double precision"):
+        SpectralMoments(*(float(value),) * 5)
+    # Table 1's surface with m00 in a unit 1e-160 times smaller: m00 m40 underflows
+    with pytest.raises(ValueError, match="alpha1"):
+        SpectralMoments(0.0625e-160, 8e-5, 8e-4, 1.04e-6 * 1e-160, 1.04e-4)

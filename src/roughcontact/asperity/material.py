@@ -88,10 +88,18 @@ class AsperityMaterial:
         set_(self, "E_star", positive("E_star", self.E_star))
         set_(self, "Y", positive("Y (yield strength)", self.Y))
         if self.H is None:
-            set_(self, "H", self.Y / TABOR_RATIO)  # eq. (68): Y = 0.354 H
+            set_(self, "H", positive("H = Y/0.354 (hardness, eq. 68)", self.Y / TABOR_RATIO))  # eq. (68)
         else:
             set_(self, "H", positive("H (hardness)", self.H))
         set_(self, "yield_coefficient", positive("yield_coefficient", self.yield_coefficient))
+        ratio = self.yield_pressure / self.E_star
+        if not (math.isfinite(ratio) and 0.0 < ratio * ratio < math.inf):
+            # ω_c of (65) scales with (K_Y Y/E*)²; a tiny ψ gives a huge Y (yield-from-psi)
+            raise ValueError(
+                f"K_Y Y/E* = {ratio!r} (K_Y Y = {self.yield_pressure!r}, E* = {self.E_star!r}): its "
+                "square in the critical interference (65) under- or overflows a double; the "
+                "plasticity index or yield strength is out of range"
+            )
         set_(self, "c_h", positive("c_h", self.c_h))
         r = positive("wp_over_wc", self.wp_over_wc)
         if not r > 1.0:

@@ -16,6 +16,8 @@ A thin layer: parse and validate the arguments, call the library, print the resu
 
 Exit codes: 0 success; 2 bad input (one line on stderr, "roughcontact: error: ...");
 1 a computed value is not finite. Any other exception is a bug and propagates (traceback).
+The library's warnings (results outside the model's range of validity) are printed as one
+line each, "roughcontact: warning: ...", and do not change the exit code.
 
 Lengths are in the unit L of the moments (m00 [L²], m20, m02 [–], m40, m04 [L⁻²]);
 pressures come out in the unit of E*, stiffnesses in (unit of E*)/L.
@@ -31,7 +33,9 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import re
 import sys
+import warnings
 from typing import Any, Callable, Sequence
 
 from .. import __version__
@@ -90,7 +94,18 @@ def _one_line(message: str) -> str:
 
 
 class _Parser(argparse.ArgumentParser):
-    """ArgumentParser whose errors are one stderr line (no usage block), exit code 2."""
+    """ArgumentParser whose errors are one stderr line (no usage block), exit code 2, and that
+    reads a negative number in any form ``float()`` accepts ("-1e6", "-1.04e-4", "-.5") as a
+    value: argparse's own pattern knows only "-12" and "-1.5", so ``--s -1e6`` failed with
+    "expected one argument". Subcommand parsers are built with ``type(parent)`` by argparse,
+    so every subcommand, also one added later, inherits both."""
+
+    #: argparse.ArgumentParser._negative_number_matcher, widened to exponents
+    NEGATIVE_NUMBER = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$")
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self._negative_number_matcher = self.NEGATIVE_NUMBER
 
     def error(self, message: str):  # type: ignore[override]
         self.exit(2, f"{PROG}: error: {_one_line(message)}\n")
@@ -187,7 +202,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     handler: Callable[[Any], dict[str, Any]] = args.func
     try:
         try:
-            payload = handler(args)
+            with warnings.catch_warnings(record=True) as caught:
+                warnings.simplefilter("always")
+                payload = handler(args)
+            for w in caught:  # the library's warnings (e.g. ModelValidityWarning): one line each
+                print(f"{PROG}: warning: {_one_line(str(w.message))}", file=sys.stderr)
         except (ValueError, TypeError) as exc:
             # the library's validation errors name the violated condition
             raise CLIError(_one_line(str(exc)), code=2) from exc

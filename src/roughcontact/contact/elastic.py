@@ -26,6 +26,7 @@ from ..integrals.rules import settings_for, theta_rule
 from ..statistics.gw import EquivalentGW
 from ..statistics.surface import SpectralMoments, gaussian_bearing_area
 from ..validation import choice, instance, positive, separations
+from .validity import VALIDITY_MODES, check_bandwidth, check_validity
 
 __all__ = ["ContactCurves", "elastic_contact", "bearing_area", "bearing_area_ratio"]
 
@@ -116,6 +117,7 @@ def elastic_contact(
     method: str = "production",
     accuracy="table",
     dps: int = 20,
+    validity: str = "refuse",
 ) -> ContactCurves:
     """Elastic contact per unit nominal area at separations ``s`` = h/√m00.
 
@@ -126,6 +128,10 @@ def elastic_contact(
     method   "production" (numba) or "reference" (mpmath at ``dps`` digits).
     accuracy production preset name ("table" ≤1e-13, "plot" ≤1e-8 relative to the mpmath
              reference; measured in docs/performance.md) — see integrals.rules.PRESETS.
+             Below μ = validity.MU_ACCURATE the promise is not tested: AccuracyWarning.
+    validity what to do outside the model's range (contact.validity.check_validity):
+             "refuse" (ModelValidityWarning for s < 0 or A/A0 > 0.1, ValueError for
+             A/A0 > 1), "warn" (warnings only), "off".
     """
     instance("surface", surface, SpectralMoments)
     s_arr = separations(s)
@@ -133,6 +139,9 @@ def elastic_contact(
     choice("model", model, MODELS)
     choice("hertz", hertz, HERTZ)
     choice("method", method, METHODS)
+    choice("validity", validity, VALIDITY_MODES)
+    if model == "bgk":
+        check_bandwidth(surface.mu, method)
 
     if model == "gw":
         gw = EquivalentGW(surface)
@@ -163,9 +172,11 @@ def elastic_contact(
         load = pre.load * I_load
         stiff = pre.stiffness * I_stiff
         hertz_used = hertz
+    area = np.asarray(area, dtype=float)
+    check_validity(s_arr, area, mode=validity)
     return ContactCurves(
         s=s_arr,
-        area_fraction=np.asarray(area, dtype=float),
+        area_fraction=area,
         pressure=E * np.asarray(load, dtype=float),
         stiffness=E * np.asarray(stiff, dtype=float),
         model=model,

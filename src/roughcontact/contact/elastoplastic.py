@@ -64,6 +64,7 @@ from ..integrals.reference_elastoplastic import reference_integrals
 from ..integrals.rules import elastoplastic_settings_for, theta_rule
 from ..statistics.surface import SpectralMoments
 from ..validation import choice, instance, separations
+from .validity import VALIDITY_MODES, check_bandwidth, check_validity
 
 __all__ = ["ElastoPlasticCurves", "elastoplastic_contact"]
 
@@ -244,6 +245,7 @@ def elastoplastic_contact(
     hertz: str = "exact",
     accuracy="table",
     method: str = "production",
+    validity: str = "refuse",
 ) -> ElastoPlasticCurves:
     """Elasto-plastic contact per unit nominal area at separations ``s`` = h/√m00 (23).
 
@@ -255,17 +257,22 @@ def elastoplastic_contact(
     accuracy  production preset of integrals.rules.ELASTOPLASTIC_PRESETS ("table", "plot") or a
               QuadratureSettings.
     method    "production" (numba) or "reference" (the scipy slow twin; seconds per point).
+    validity  "refuse" | "warn" | "off": outside the model's range (contact.validity): warnings
+              for s < 0 or A/A0 > 0.1, ValueError for A/A0 > 1 unless "warn".
 
     Returns :class:`ElastoPlasticCurves`: A/A0, W/A0 (unit of E*), K/A0 = −d(W/A0)/dh (unit of
     E* per L) and the elastic / elasto-plastic / plastic parts of area and load.
     """
     s_arr = _check_inputs(surface, s, material, hertz, method)
+    choice("validity", validity, VALIDITY_MODES)
+    check_bandwidth(surface.mu, method)
     if method == "production":
         elastoplastic_settings_for(accuracy)  # validates the preset name
         cols = _production(surface, surface.l_from_s(s_arr), material, hertz, accuracy)
     else:
         cols = np.array([reference_integrals(surface, float(x), material, hertz=hertz) for x in s_arr])
     Ae, Aep, Ap, We, Wep, Wp, K, Kj = (np.asarray(cols[:, q], dtype=float) for q in range(8))
+    check_validity(s_arr, Ae + Aep + Ap, mode=validity)
     return ElastoPlasticCurves(
         s=s_arr,
         area_fraction=Ae + Aep + Ap,

@@ -25,7 +25,9 @@ from typing import Callable, Mapping, Sequence
 import numpy as np
 
 from ..statistics.surface import SpectralMoments
+from ..validation import choice
 from .closures import CLOSURES, DEFAULTS, default_closure, resolve_material
+from .validity import VALIDITY_MODES
 
 __all__ = [
     "SweepSpec", "SWEEPABLE", "run_sweep", "split", "combine", "chunk_count", "parameter_units",
@@ -59,6 +61,9 @@ class SweepSpec:
     closure  plasticity-index closure name (None: the one psi / Y imply, closures.default_closure).
     hertz    "exact" | "paper"; accuracy: production preset ("table", "plot").
     with_elastic  also evaluate the purely elastic model (variables ``elastic_model_*``).
+    validity "warn" (default): a grid whose heavy corner passes A/A0 = 1 (the paper's Figs 5–8
+             plot such loads) warns there (contact.validity.ModelValidityWarning, naming s and
+             A/A0) instead of losing the whole grid; "refuse" raises as the contact API does.
     units    {"length": ..., "stress": ...} of the inputs (stored as the variables' units).
     """
 
@@ -69,6 +74,7 @@ class SweepSpec:
     hertz: str = "exact"
     accuracy: str = "plot"
     with_elastic: bool = True
+    validity: str = "warn"
     units: Mapping[str, str] = field(default_factory=lambda: {"length": "L", "stress": "unit of E*"})
 
     def __post_init__(self) -> None:
@@ -95,6 +101,7 @@ class SweepSpec:
             object.__setattr__(self, "closure", closure)
         elif self.closure not in CLOSURES:
             raise ValueError(f"closure must be one of {', '.join(CLOSURES)}; got {self.closure!r}")
+        choice("validity", self.validity, VALIDITY_MODES)
         s = np.atleast_1d(np.asarray(self.s, dtype=float))
         if s.ndim != 1 or s.size == 0 or not np.all(np.isfinite(s)):
             raise ValueError("s must be a non-empty 1-D list of finite separations h/sqrt(m00)")
@@ -166,14 +173,16 @@ def run_sweep(spec: SweepSpec, progress: Callable[[int, int], None] | None = Non
     per_combo = {k: np.empty(shape[:-1]) for k in ("psi", "Y", "H")}
     elastic_done = {}  # the elastic model depends on (surface, E*) only, not on the material
     for n, (idx, surface, material) in enumerate(jobs, start=1):
-        ep = elastoplastic_contact(surface, spec.s, material, hertz=spec.hertz, accuracy=spec.accuracy)
+        ep = elastoplastic_contact(surface, spec.s, material, hertz=spec.hertz, accuracy=spec.accuracy,
+                                   validity=spec.validity)
         for f in ep_fields:
             data[f][idx] = getattr(ep, f)
         if spec.with_elastic:
             key = (surface, material.E_star)
             if key not in elastic_done:
                 elastic_done[key] = elastic_contact(
-                    surface, spec.s, material.E_star, hertz=spec.hertz, accuracy=spec.accuracy
+                    surface, spec.s, material.E_star, hertz=spec.hertz, accuracy=spec.accuracy,
+                    validity=spec.validity,
                 )
             for f in _ELASTIC_FIELDS:
                 data[f"elastic_model_{f}"][idx] = getattr(elastic_done[key], f)

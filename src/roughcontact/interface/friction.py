@@ -328,6 +328,12 @@ def initial_state(shape=(), *, u_N=0.0, k_N=None):
     (p_N from :func:`normal_law` stored if k_N, a constant or an InterfaceLaw, is given; with a
     law, u_N = 0 is its reference state p_N = p0). ``shape`` is the point shape ((): one point)."""
     shape = (shape,) if isinstance(shape, (int, np.integer)) else tuple(shape)
+    if not np.all(np.isfinite(np.asarray(u_N, dtype=float))):
+        raise ValueError(f"u_N must be finite, got {u_N!r}")
+    if k_N is not None and not isinstance(k_N, InterfaceLaw):
+        k = np.asarray(k_N, dtype=float)
+        if not np.all(np.isfinite(k) & (k > 0.0)):
+            raise ValueError(f"k_N must be finite and > 0 (or an InterfaceLaw), got {k_N!r}")
     s = np.zeros(shape + (NSTATE,))
     s[..., U_N] = u_N
     if k_N is not None:
@@ -423,7 +429,8 @@ def update(model, state, du, k_N, k_Tx=None, k_Ty=None, *, tol=1e-12,
     -------
     FrictionUpdate(state, D, status); state and D have the broadcast point shape.
 
-    Raises ValueError for bad input and for closures beyond the heavy end of a tabulated law.
+    Raises ValueError for bad input, for closures beyond the heavy end of a tabulated law and
+    for increments or stiffnesses whose trial tractions overflow (no non-finite state returned).
     """
     model = _as_model(model)
     if not isinstance(tangential, str) or tangential not in _FORM_CODES:
@@ -446,6 +453,13 @@ def update(model, state, du, k_N, k_Tx=None, k_Ty=None, *, tol=1e-12,
             f"u_N = {u_bad:g} at points {bad[:10].tolist()} exceeds the heavy end of "
             f"the tabulated normal law (u_max = {k_N.u_max:g}, p_max = {k_N.table.p_max:g}); "
             "rebuild the table with a larger p_max")
+    overflow = ~(np.all(np.isfinite(s_new), axis=1) & np.all(np.isfinite(D), axis=(1, 2)))
+    if np.any(overflow):
+        bad = np.flatnonzero(overflow)
+        raise ValueError(
+            f"the update overflows double precision at points {bad[:10].tolist()} (stiffness "
+            f"{st[bad[0]].tolist()}, increment {d[bad[0]].tolist()}): the trial tractions "
+            "k_T·Δu_T, k_N·u_N are not finite; reduce the increment or the stiffness")
     if np.any(status == FAILED):
         bad = np.flatnonzero(status == FAILED)
         raise RuntimeError(f"return mapping did not converge at points {bad[:10].tolist()}")

@@ -81,6 +81,7 @@ import numpy as np
 from ..asperity import AsperityMaterial
 from ..contact import elastic_contact, elastoplastic_contact
 from ..contact.elastic import HERTZ
+from ..contact.validity import check_validity
 from ..statistics.surface import SpectralMoments
 from ..validation import choice, instance, positive
 from .kernels import _closure_law_array, closure_law
@@ -235,6 +236,8 @@ class NormalLawTable:
                 raise ValueError(f"pressure_range must be positive, got {pressure_range!r}")
             h_min = direct.separation_for(p_max * (1.0 + _END_MARGIN))
             h_max = direct.separation_for(p_light * (1.0 - _END_MARGIN))
+        # A/A0 is largest at the heavy end: warn past the model's quantitative range, refuse A/A0 > 1
+        check_validity(h_min / surface.height_std, direct.area[h_min])
         tab, err_p, err_k = _refine(direct, h_min, h_max, rtol)
         return cls(*tab.T.copy(), level=level, hertz=hertz, surface=surface, E_star=E,
                    material=material, accuracy=accuracy, rtol=rtol, max_error_pressure=err_p,
@@ -321,6 +324,7 @@ class _DirectIntegration:
         self.surface, self.level, self.E_star = surface, level, E_star
         self.material, self.hertz, self.accuracy = material, hertz, accuracy
         self.cache: dict[float, tuple[float, float]] = {}
+        self.area: dict[float, float] = {}  # A/A0 at the evaluated separations
         self.count = 0
 
     def __call__(self, h):
@@ -330,11 +334,14 @@ class _DirectIntegration:
             s = self.surface.s_from_h(np.array(missing))
             if self.level == "elastic":
                 c = elastic_contact(self.surface, s, self.E_star, model="bgk", hertz=self.hertz,
-                                    accuracy=self.accuracy)
+                                    accuracy=self.accuracy, validity="off")
             else:
                 c = elastoplastic_contact(self.surface, s, self.material, hertz=self.hertz,
-                                          accuracy=self.accuracy)
+                                          accuracy=self.accuracy, validity="off")
             self.count += len(missing)
+            # the range is checked once, at its heavy end (NormalLawTable.build), not at every
+            # trial separation of the searches
+            self.area.update(zip(missing, map(float, c.area_fraction)))
             for x, p, k in zip(missing, c.pressure, c.stiffness):
                 if not (p > 0.0 and k > 0.0 and math.isfinite(p) and math.isfinite(k)):
                     raise ValueError(

@@ -14,6 +14,8 @@ from typing import Iterator, Mapping, Sequence
 
 import numpy as np
 
+from ..files import atomic_path
+
 __all__ = [
     "STYLE", "style", "new_figure", "save", "fig3", "fig4", "fig5", "fig6", "stiffness_vs_pressure",
     "stiffness_sensitivity", "fig9", "slip_hardening", "friction_cases", "fig13", "punch_slips",
@@ -64,11 +66,11 @@ def new_figure(**kwargs):
 
 
 def save(fig, path: str | os.PathLike, *, dpi: int | None = None) -> Path:
-    """Write ``fig`` as PNG (no creation-time metadata) and return the path."""
+    """Write ``fig`` as PNG (no creation-time metadata), atomically (io.atomic_path), and
+    return the path."""
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    with style():
-        fig.savefig(path, format="png", dpi=dpi or STYLE["savefig.dpi"], metadata={"Software": None})
+    with style(), atomic_path(path) as tmp:
+        fig.savefig(tmp, format="png", dpi=dpi or STYLE["savefig.dpi"], metadata={"Software": None})
     return path
 
 

@@ -15,6 +15,8 @@ import numpy as np
 __all__ = ["SpectralMoments", "ProfileDensities", "gaussian_bearing_area"]
 
 _MOMENT_NAMES = ("m00", "m20", "m02", "m40", "m04")
+#: derived statistics that must be finite and positive for the moments to be usable
+_DERIVED = ("summit_density", "mean_summit_curvature", "summit_height_std", "summit_mean_height")
 
 
 @dataclass(frozen=True)
@@ -54,12 +56,30 @@ class SpectralMoments:
             if fvalue <= 0.0:
                 raise ValueError(f"{name} must be positive, got {fvalue!r}")
             object.__setattr__(self, name, fvalue)
+        self._check_representable(("alpha1", "alpha2", "beta1", "beta2"))
         if not self.mu > 0.0:
             raise ValueError(
                 "the moments violate mu = 1 - 1/alpha1 - 1/alpha2 > 0 (covariance (8) not "
                 f"positive definite): alpha1 = m00*m40/m20^2 = {self.alpha1:.6g}, "
                 f"alpha2 = m00*m04/m02^2 = {self.alpha2:.6g}, mu = {self.mu:.6g}"
             )
+        self._check_representable(_DERIVED)
+
+    def _check_representable(self, names) -> None:
+        """ValueError unless every derived statistic in ``names`` is a finite positive double:
+        moments like 1e-300 or 1e300 are valid numbers whose products (m20² in α1, m40 m04 in
+        D_sum) under- or overflow, which ended in ZeroDivisionError / OverflowError."""
+        for name in names:
+            try:
+                value = getattr(self, name)
+            except (ZeroDivisionError, OverflowError):
+                value = math.nan
+            if not (math.isfinite(value) and value > 0.0):
+                raise ValueError(
+                    f"{name} of these moments is not a finite positive double ({value!r}): the "
+                    "moments under- or overflow in double precision; express them in another "
+                    "length unit"
+                )
 
     # -- bandwidth parameters, eqs. (10)-(11) ---------------------------------------------
     @property

@@ -1,0 +1,52 @@
+"""Atomic file writes that honour the umask (no physics, no roughcontact imports).
+
+Every file the library and the workflow write goes through :func:`atomic_path`: written to a
+temporary name next to the target and renamed into place, so a job killed midway never leaves a
+half-written result under the final name, and created with the mode ``open(path, "w")`` would
+give (0666 minus the umask) so that other users and web servers can read the reports.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import tempfile
+from pathlib import Path
+from typing import Iterator
+
+__all__ = ["atomic_path"]
+
+
+def _umask() -> int:
+    """The process's umask (read by setting and restoring it; there is no getter)."""
+    mask = os.umask(0o022)
+    os.umask(mask)
+    return mask
+
+
+def _atomic_target(path: Path) -> Path:
+    """A fresh temporary file next to ``path``, with the mode a plain ``open(path, "w")``
+    would give (0666 minus the umask): ``tempfile.mkstemp`` creates 0600 files and
+    ``os.replace`` keeps the mode, which would leave reports unreadable to other users."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".part", dir=path.parent)
+    try:
+        os.fchmod(fd, 0o666 & ~_umask())
+    finally:
+        os.close(fd)
+    return Path(tmp)
+
+
+@contextlib.contextmanager
+def atomic_path(path: str | os.PathLike) -> Iterator[Path]:
+    """Yield a temporary path next to ``path``; when the block succeeds it is renamed onto
+    ``path`` (readable as the umask allows), when it fails it is removed: a job killed or
+    failing midway never leaves a half-written file under the final name."""
+    path = Path(path)
+    tmp = _atomic_target(path)
+    try:
+        yield tmp
+        os.replace(tmp, path)
+    finally:
+        if tmp.exists():
+            tmp.unlink()

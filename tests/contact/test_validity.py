@@ -1,0 +1,96 @@
+"""roughcontact.contact.validity: the model's range of validity, warned about and enforced
+(issue #12: `elastic --s -5` gave A/A0 = 1.43, a NormalLawTable up to 1e5 N/mm² A/A0 = 10)."""
+
+import warnings
+
+import numpy as np
+import pytest
+
+from roughcontact import SpectralMoments
+from roughcontact.asperity import AsperityMaterial
+from roughcontact.contact import elastic_contact, elastoplastic_contact, validity
+from roughcontact.contact.sweep import SweepSpec, run_sweep
+from roughcontact.contact.validity import AccuracyWarning, ModelValidityWarning, check_validity
+from roughcontact.interface.normal_law import NormalLawTable
+
+TABLE1 = SpectralMoments(0.0625, 8e-5, 8e-4, 1.04e-6, 1.04e-4)
+E_STAR = 1.14e5
+
+
+def _caught(fn, *args, **kwargs):
+    with warnings.catch_warnings(record=True) as w:
+        warnings.simplefilter("always")
+        out = fn(*args, **kwargs)
+    return out, [x for x in w if issubclass(x.category, (ModelValidityWarning, AccuracyWarning))]
+
+
+def test_check_validity_warns_and_refuses():
+    _, w = _caught(check_validity, [1.0, 2.0], [0.05, 0.01])
+    assert w == []
+    _, w = _caught(check_validity, [0.5], [0.2])
+    assert len(w) == 1 and "exceeds 0.1" in str(w[0].message)
+    _, w = _caught(check_validity, [0.5], [0.2], area_ratio_limit=0.3)  # the limit is a setting
+    assert w == []
+    _, w = _caught(check_validity, [-0.1], [0.05])
+    assert len(w) == 1 and "s = -0.1 < 0" in str(w[0].message)
+    with pytest.raises(ValueError, match=r"A/A0 = 1\.5 > 1 at s = -3"):
+        check_validity([-3.0, 1.0], [1.5, 0.05])
+    _, w = _caught(check_validity, [-3.0], [1.5], mode="warn")
+    assert any("> 1" in str(x.message) for x in w)
+    _, w = _caught(check_validity, [-3.0], [1.5], mode="off")
+    assert w == []
+    with pytest.raises(ValueError, match="area_ratio_limit"):
+        check_validity([1.0], [0.01], area_ratio_limit=2.0)
+    assert validity.AREA_RATIO_LIMIT == 0.1
+
+
+def test_elastic_contact_refuses_more_than_the_nominal_area():
+    with pytest.raises(ValueError, match=r"A/A0 = 1\.42\d* > 1 at s = -5"):
+        elastic_contact(TABLE1, [1.0, -5.0], E_STAR)
+    with pytest.raises(ValueError, match="> 1"):
+        elastic_contact(TABLE1, [-50.0], E_STAR, model="gw")
+    c, w = _caught(elastic_contact, TABLE1, [-5.0], E_STAR, validity="warn")
+    assert c.area_fraction[0] == pytest.approx(1.4268, rel=1e-4) and w
+    c, w = _caught(elastic_contact, TABLE1, [-1.0, 2.0], E_STAR)
+    assert {str(x.message).split(":")[0] for x in w} >= {"A/A0 = 0.422 at s = -1 exceeds 0.1"}
+    c, w = _caught(elastic_contact, TABLE1, [1.5, 3.0], E_STAR)  # the printed table rows: quiet
+    assert w == []
+
+
+def test_elastoplastic_contact_and_sweeps():
+    mat = AsperityMaterial(E_STAR, 2070.0)
+    with pytest.raises(ValueError, match="> 1"):
+        elastoplastic_contact(TABLE1, [-6.0], mat)
+    _, w = _caught(elastoplastic_contact, TABLE1, [-0.5], mat)
+    assert any("s = -0.5 < 0" in str(x.message) for x in w)
+    # a sweep over the paper's figure range warns at its heavy corner instead of failing
+    spec = SweepSpec(axes={"psi": [0.5]}, s=[-6.0, 2.0], fixed={**TABLE1.as_dict(), "E_star": E_STAR},
+                     with_elastic=False)
+    ds, w = _caught(run_sweep, spec)
+    assert float(ds.area_fraction.max()) > 1.0 and any("> 1" in str(x.message) for x in w)
+    with pytest.raises(ValueError, match="> 1"):
+        run_sweep(SweepSpec(**{**spec.__dict__, "validity": "refuse"}))
+
+
+def test_normal_law_table_refuses_pressures_past_full_contact():
+    with pytest.raises(ValueError, match="> 1"):
+        NormalLawTable.build(TABLE1, "elastic", E_star=E_STAR, pressure_range=(1e-3, 1e5))
+    _, w = _caught(NormalLawTable.build, TABLE1, "elastic", E_star=E_STAR, pressure_range=(1e-3, 1e3))
+    assert any("exceeds 0.1" in str(x.message) for x in w)
+    _, w = _caught(NormalLawTable.build, TABLE1, "elastic", E_star=E_STAR, pressure_range=(1e-3, 10.0))
+    assert w == []
+
+
+def test_accuracy_warning_below_the_tested_bandwidth():
+    """As alpha -> 2 (mu -> 0) the production quadrature degrades (2.8e-7 at mu = 1e-4): warned."""
+    alpha = 2.0 / (1.0 - 1e-4)
+    narrow = SpectralMoments(1.0, 1.0, 1.0, alpha, alpha)
+    _, w = _caught(elastic_contact, narrow, [2.0], 1.0)
+    assert len(w) == 1 and issubclass(w[0].category, AccuracyWarning) and "mu = 0.0001" in str(w[0].message)
+    tested = SpectralMoments(1.0, 1.0, 1.0, 2.03, 2.03)  # mu = 0.0148 > MU_ACCURATE = 0.0099
+    _, w = _caught(elastic_contact, tested, [2.0], 1.0)
+    assert w == []
+    _, w = _caught(elastic_contact, narrow, [2.0], 1.0, model="gw")  # closed form: no warning
+    assert w == []
+    assert validity.MU_ACCURATE == pytest.approx(1 - 2 / 2.02)
+    assert np.isclose(validity.MU_DEGRADATION[1][1], 2.8e-7)
