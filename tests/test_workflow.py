@@ -189,6 +189,32 @@ def test_fig4_scene_end_to_end_then_nothing_to_do(tmp_path):
     r = snakemake(clone, "-n", "fig4")
     assert r.returncode == 0 and "Nothing to be done" in r.stdout + r.stderr
 
+    # issue #12: relocatable. The same checkout and results under another path plan nothing
+    # (rule inputs were absolute paths: a copied results tree was planned again from scratch)
+    moved = clone.rename(tmp_path / "moved")
+    r = snakemake(moved, "-n", "fig4")
+    assert r.returncode == 0 and "Nothing to be done" in r.stdout + r.stderr, r.stdout + r.stderr
+    # issue #12: a comment or docstring in claims.py changes no number and re-plans nothing
+    # (it re-planned 9 jobs); code re-plans the figure job that checks the claims, not the curves
+    claims = moved / "src" / "roughcontact" / "paper" / "claims.py"
+    text = claims.read_text()
+    claims.write_text(text.replace('"""', '"""Reworded. ', 1) + "\n# a comment\n")
+    r = snakemake(moved, "-n", "fig4")
+    assert r.returncode == 0 and "Nothing to be done" in r.stdout + r.stderr, r.stdout + r.stderr
+    claims.write_text(text + "\nRESOLUTION_NOTE = 1.0\n")
+    r = snakemake(moved, "-n", "fig4")
+    plan = (r.stdout + r.stderr).split("Job stats")[-1]
+    assert re.search(r"^figure\s+1$", plan, flags=re.M) and "curves_hertz_factors" not in plan, plan
+
+
+def test_rules_bake_no_interpreter_or_absolute_path():
+    """Issue #12: `params.py = sys.executable` put the venv's absolute path into the jobs'
+    records (a params change re-runs them elsewhere)."""
+    for smk in sorted((ROOT / "workflow" / "rules").glob("*.smk")) + [ROOT / "Snakefile"]:
+        text = smk.read_text()
+        assert not re.search(r"^\s+\w+=sys\.executable", text, flags=re.M), smk
+        assert "{params.py}" not in text, smk
+
 
 # -- cluster profiles ----------------------------------------------------------------------------
 TINY_SWEEP = {

@@ -3,7 +3,7 @@
 # `benchmark_mode: quick` in the workflow (a few minutes; CI), `make bench` runs the full mode.
 
 BENCH_QUICK = config.get("benchmark_mode", "quick") == "quick"
-BENCH_SOURCES = sorted(str(p) for p in (REPO / "benchmarks").glob("*.py"))
+BENCH_SOURCES = [code_fingerprint(p) for p in sorted((REPO / "benchmarks").glob("*.py"))]
 
 
 def _every_core(wildcards):
@@ -33,13 +33,12 @@ rule speed_vs_error:
     benchmark:
         "results/benchmarks/rules/speed_vs_error.tsv"
     params:
-        py=sys.executable,
         mode="--quick" if BENCH_QUICK else "",
         out_dir="results/benchmarks/speed_vs_error",
         # sub-grid of the sweep timed (m00 × ψ combinations, 400 s each), extrapolated to 10⁶ points
         sweep_grid="--m00 3 --psi 3" if BENCH_QUICK else "--m00 5 --psi 5",
     threads: _every_core
     shell:
-        "{params.py} benchmarks/sweep_throughput.py {params.sweep_grid} --json {output.sweep} > {log} 2>&1 && "
-        "{params.py} benchmarks/speed_vs_error.py --out-dir {params.out_dir} --figure {output.png} "
+        "python benchmarks/sweep_throughput.py {params.sweep_grid} --json {output.sweep} > {log} 2>&1 && "
+        "python benchmarks/speed_vs_error.py --out-dir {params.out_dir} --figure {output.png} "
         "--report {output.md} {params.mode} >> {log} 2>&1"

@@ -1,11 +1,17 @@
 # Helpers shared by the rules: scenes from config, the library sources results depend on,
 # and the slice of the configuration recorded as provenance in each result.
 
+import ast
 import copy
+import hashlib
+import os
 import sys
 from pathlib import Path
 
 REPO = Path(workflow.basedir)
+# Shell rules call `python`: the interpreter running Snakemake comes first on PATH (a parameter
+# holding sys.executable would bake the venv's absolute path into every job's record).
+os.environ["PATH"] = f"{Path(sys.executable).parent}{os.pathsep}{os.environ.get('PATH', '')}"
 SCENES = config["scenes"]
 REFERENCE_DPS = int(config["reference_dps"])
 
@@ -37,20 +43,52 @@ def _alternation(names):
 
 
 # Library modules whose code determines the numbers: editing one re-runs the computations
-# that use it (Snakemake's mtime trigger). The layers below the FE engine, plus the scene
-# definitions of paper/; the reports (paper/claims, verify, report, plots; io) are the inputs
-# of the report rules only, so restyling a figure or rewording a claim never re-runs the
-# mpmath reference.
+# that use it. The layers below the FE engine, plus the scene definitions of paper/; the
+# reports (paper/claims, verify, report, plots; io) are the inputs of the report rules only, so
+# restyling a figure or rewording a claim never re-runs the mpmath reference.
+#
+# A rule does not take the .py files themselves as inputs but their CODE FINGERPRINTS
+# (results/code/<module>.sha256, SHA-256 of the module's syntax tree without comments and
+# docstrings), rewritten here, when the workflow is parsed, only if the code changed: a
+# comment, a docstring or a reformatting changes no number and re-plans no job, and the
+# fingerprints travel with a copied results tree. All paths are relative to the workflow
+# directory (the working directory of every rule), so a copied checkout plans nothing new.
 LIB = REPO / "src" / "roughcontact"
+FINGERPRINTS = Path("results") / "code"
+
+
+def _code_digest(path):
+    """SHA-256 of the module's syntax tree, docstrings removed (comments never reach it)."""
+    tree = ast.parse(Path(path).read_text(encoding="utf-8"))
+    for node in ast.walk(tree):
+        body = getattr(node, "body", None)
+        if (isinstance(node, (ast.Module, ast.ClassDef, ast.FunctionDef, ast.AsyncFunctionDef)) and body
+                and isinstance(body[0], ast.Expr) and isinstance(body[0].value, ast.Constant)
+                and isinstance(body[0].value.value, str)):
+            node.body = body[1:] or [ast.Pass()]
+    return hashlib.sha256(ast.dump(tree, include_attributes=False).encode()).hexdigest()
+
+
+def code_fingerprint(path):
+    """The fingerprint file of one source file (relative to the workflow directory), rewritten
+    only when the code's digest changed, so that its mtime moves only then."""
+    rel = Path(path).resolve().relative_to(REPO)
+    stamp = FINGERPRINTS / (str(rel).replace("/", "__") + ".sha256")
+    digest = _code_digest(REPO / rel) + "\n"
+    if not (REPO / stamp).exists() or (REPO / stamp).read_text() != digest:
+        (REPO / stamp).parent.mkdir(parents=True, exist_ok=True)
+        (REPO / stamp).write_text(digest)
+    return str(stamp)
 
 
 def library_sources(*parts):
-    """The .py files of the named packages (folders) and modules of src/roughcontact."""
+    """The code fingerprints of the .py files of the named packages (folders) and modules of
+    src/roughcontact."""
     out = []
     for part in parts:
         path = LIB / part
         out += sorted(path.rglob("*.py")) if path.is_dir() else [path]
-    return [str(p) for p in out]
+    return [code_fingerprint(p) for p in out]
 
 
 PHYSICS_SOURCES = library_sources(
@@ -59,7 +97,8 @@ PHYSICS_SOURCES = library_sources(
 #: stamp of the numba_warmup job: the rules that call the numba kernels take it as input, so
 #: that a cold cache is compiled once, not once per parallel job (docs/performance.md).
 KERNELS_WARM = "results/numba/warm.stamp"
-REPORT_SOURCES = library_sources("paper/claims.py", "paper/verify.py", "paper/report.py", "paper/plots.py", "io.py")
+REPORT_SOURCES = library_sources("paper/claims.py", "paper/verify.py", "paper/report.py", "paper/plots.py", "io.py",
+                                 "files.py")
 
 
 def scene_targets():

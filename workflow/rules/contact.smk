@@ -17,10 +17,8 @@ rule numba_warmup:
         "logs/numba_warmup.log",
     benchmark:
         "results/benchmarks/rules/numba_warmup.tsv"
-    params:
-        py=sys.executable,
     shell:
-        "{params.py} -c 'from roughcontact.warmup import warm_up; warm_up()' > {log} 2>&1"
+        "python -c 'from roughcontact.warmup import warm_up; warm_up()' > {log} 2>&1"
 
 
 rule reference:

@@ -3,8 +3,8 @@
 
 
 def errata_input(wildcards):
-    path = REPO / "docs" / "errata.md"
-    return [str(path)] if path.exists() else []
+    path = Path("docs") / "errata.md"  # relative: the workflow stays relocatable
+    return [str(path)] if (REPO / path).exists() else []
 
 
 rule numerics_elastoplastic:

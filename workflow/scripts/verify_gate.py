@@ -1,5 +1,6 @@
 """The verdict gate of `snakemake verify`: print the summary; fail on any regression
-(a check expected "reproduced" in config/expected_verdicts.yaml that is not)."""
+(a check expected "reproduced" in config/expected_verdicts.yaml that is not, a documented
+discrepancy outside its band, a scene with fewer checks than expected_checks declares)."""
 
 import json
 import sys
@@ -12,7 +13,8 @@ def message(summary):
     lines = [
         f"verification {'PASSED' if summary['passed'] else 'FAILED'}: {summary['checks']} checks, "
         f"{summary['reproduced']} reproduced, {summary['not_reproduced']} not reproduced "
-        f"({summary['known']} documented), {summary['improved']} improved, "
+        f"({summary['known']} documented), {summary.get('within_residual', 0)} within a documented residual, "
+        f"{summary['improved']} improved, "
         f"{summary['regressions']} regressions"
     ]
     for scene, c in summary["by_scene"].items():
@@ -20,6 +22,11 @@ def message(summary):
             f"  {scene}: {c['reproduced']}/{c['checks']} reproduced, {c['known']} documented, "
             f"{c['improved']} improved, {c['regressions']} regressions"
         )
+    coverage = summary.get("coverage") or {}
+    lines += [f"  MISSING CHECKS {m['scene']}: {m['found']} of {m['expected']} declared" for m in coverage.get("missing", [])]
+    lines += [f"  skipped {m['scene']}: needs {m['requires']}, not installed" for m in coverage.get("skipped", [])]
+    lines += [f"  more checks than declared in {m['scene']}: {m['found']} of {m['expected']} (update expected_checks)"
+              for m in coverage.get("unexpected", [])]
     lines += [f"  REGRESSION {i}" for i in summary["regression_ids"]]
     lines += [f"  improved (update config/expected_verdicts.yaml): {i}" for i in summary["improved_ids"]]
     lines.append("  report: paper_figures/VERIFICATION.md")
@@ -33,7 +40,9 @@ def run(summary_path, output, log):
     with io.log_to(log) as logger:
         logger.info("\n%s", text)
         if not summary["passed"]:
-            raise SystemExit(f"{summary['regressions']} verification regression(s): see paper_figures/VERIFICATION.md")
+            missing = len((summary.get("coverage") or {}).get("missing", []))
+            raise SystemExit(f"{summary['regressions']} verification regression(s), {missing} scene(s) missing "
+                             f"checks, {summary['checks']} checks: see paper_figures/VERIFICATION.md")
         io.write_text(output, text + "\n")
 
 
