@@ -180,11 +180,22 @@ def _mpmath_rows(point, surface, s, ref, rows):
                     note="the reference itself: error ≤ 1e-15 by construction"))
 
 
+def tplquad_label(quantity: str, rec: dict, measured_now: bool) -> tuple[str, str]:
+    """(method label, note) of a tplquad row: a time taken from the recorded cache says so in
+    the label itself, "recorded on <date>, not re-measured", so that no report shows it as a
+    measurement of this run."""
+    if measured_now:
+        return f"scipy tplquad ({quantity} only)", f"measured in this run, load {rec['loadavg']:.2f}"
+    return (f"scipy tplquad ({quantity} only; recorded on {rec['date']}, not re-measured)",
+            f"recorded on {rec['date']} at load {rec['loadavg']:.2f}, not re-measured")
+
+
 def _tplquad_rows(cache_path: Path, references: refs.ReferenceCache, quick: bool, rows):
     """The naive scipy tplquad: one point, each quantity once (10–60 min each); cached with the
     time it took and the load average (TPLQUAD_CACHE, in the repository), reused by later runs
     and marked as cached in the report."""
     cache = json.loads(cache_path.read_text()) if cache_path.exists() else {}
+    measured = set()
     cases = [("elastic", "table1", 3.5, q) for q in ("area", "load", "stiffness")]
     cases.append(("elastoplastic", "table1", 3.5, "area"))
     for model, sname, s, quantity in cases:
@@ -200,13 +211,14 @@ def _tplquad_rows(cache_path: Path, references: refs.ReferenceCache, quick: bool
                 v, dt = _timed(lambda: baselines.naive_tplquad(surface, s, quantity=quantity, kind=model,
                                                                material=mat))
             cache[key] = {"value": v, "seconds": dt, "loadavg": load, "date": time.strftime("%Y-%m-%d")}
+            measured.add(key)
             write_text(cache_path, json.dumps(cache, indent=1))
         rec = cache[key]
         ref = refs.elastic(references, surface, s) if model == "elastic" else refs.elastoplastic(references, surface, s, PSI)
         q = ("area", "load", "stiffness").index(quantity)
-        row = Row(model, f"{sname} s={s}", f"scipy tplquad ({quantity} only)", "scipy tplquad", [rec["seconds"]],
-                  values=np.full(3, np.nan), errors=[None, None, None],
-                  note=f"measured {rec['date']}, load {rec['loadavg']:.2f}; cached")
+        method, note = tplquad_label(quantity, rec, measured_now=key in measured)
+        row = Row(model, f"{sname} s={s}", method, "scipy tplquad", [rec["seconds"]],
+                  values=np.full(3, np.nan), errors=[None, None, None], note=note)
         row.values[q] = rec["value"]
         row.errors[q] = _relative_errors([rec["value"]], [ref[q]])[0]
         rows.append(row)

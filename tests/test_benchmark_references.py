@@ -35,3 +35,16 @@ def test_committed_seed_matches_todays_reference_code():
     silently goes back to computing every reference (~70 s more in `make reproduce`)."""
     seed = json.loads(refs.SEED.read_text())
     assert seed and {rec["fingerprint"] for rec in seed.values()} == {refs.code_fingerprint()}
+
+
+def test_recorded_tplquad_rows_say_they_were_not_re_measured():
+    """Issue #12: quick-mode speed rows taken from the recorded tplquad cache read like this
+    run's measurements; their label now says "recorded on <date>, not re-measured"."""
+    import speed_vs_error
+
+    rec = json.loads((Path(speed_vs_error.TPLQUAD_CACHE)).read_text())["elastic|table1|3.5|area"]
+    method, note = speed_vs_error.tplquad_label("area", rec, measured_now=False)
+    assert method == f"scipy tplquad (area only; recorded on {rec['date']}, not re-measured)"
+    assert "not re-measured" in note
+    method, note = speed_vs_error.tplquad_label("area", rec, measured_now=True)
+    assert method == "scipy tplquad (area only)" and "measured in this run" in note

@@ -17,7 +17,7 @@ merging of contact spots, a bulk that does not deform between them. Its range of
 Numerically, the production quadrature keeps its stated accuracy ("table" ≤ 1e-13 relative to
 the mpmath reference) for bandwidths μ = 1 − 1/α1 − 1/α2 ≥ ``MU_ACCURATE`` (α1 = α2 ≥ 2.02,
 where the tests stop). As μ → 0 (α → 2) the summit density concentrates and the agreement
-degrades (measured: 1.7e-10 at μ = 1e-3, 2.8e-7 at 1e-4, 4.9e-6 at 1e-7); below
+degrades (measured: 2.4e-13 at μ = 3e-3, 1.7e-10 at 1e-3, 2.8e-7 at 1e-4, 4.9e-6 at 1e-7); below
 ``MU_ACCURATE`` the production integrators emit an :class:`AccuracyWarning` stating this bound.
 """
 
@@ -43,8 +43,9 @@ __all__ = [
 AREA_RATIO_LIMIT = 0.1
 #: smallest μ = 1 − 1/α1 − 1/α2 at which the production presets' accuracy is tested (α = 2.02)
 MU_ACCURATE = 1.0 - 2.0 / 2.02
-#: measured worst production-vs-mpmath relative difference at small μ (issue #12)
-MU_DEGRADATION = ((1e-3, 1.7e-10), (1e-4, 2.8e-7), (1e-7, 4.9e-6))
+#: measured worst production ("table") vs mpmath relative difference at small μ, α1 = α2,
+#: s = 1, 2, 3 (docs/derivation.md, "Range of validity"; 1e-7 from the review of issue #12)
+MU_DEGRADATION = ((3e-3, 2.4e-13), (1e-3, 1.7e-10), (1e-4, 2.8e-7), (1e-7, 4.9e-6))
 #: what the contact API does with results outside the range of validity:
 #: "refuse" warns outside the quantitative range and raises for A/A0 > 1; "warn" only warns
 #: (the paper's figures plot loads past A/A0 = 1; the workflow's sweeps say so); "off" checks
@@ -67,33 +68,36 @@ def check_validity(separation, area_ratio, *, area_ratio_limit: float = AREA_RAT
 
     separation  s = h/√m00 [–], array-like; area_ratio  A/A0 [–] at the same points.
     """
-    choice("mode", mode, VALIDITY_MODES)
+    if mode not in VALIDITY_MODES:
+        choice("mode", mode, VALIDITY_MODES)
     if mode == "off":
         return
-    s = np.atleast_1d(np.asarray(separation, dtype=float))
-    a = np.broadcast_to(np.atleast_1d(np.asarray(area_ratio, dtype=float)), s.shape)
     limit = float(area_ratio_limit)
     if not 0.0 < limit <= 1.0:
         raise ValueError(f"area_ratio_limit must lie in (0, 1], got {area_ratio_limit!r}")
-    full = a > 1.0
-    if np.any(full):
-        i = int(np.argmax(np.where(full, a, -np.inf)))
-        message = (f"A/A0 = {a[i]:.4g} > 1 at s = {s[i]:g}: the real contact area would exceed the "
-                   "nominal one, the asperity model has no meaning there (give larger separations "
-                   "or smaller loads)")
+    s = np.asarray(separation, dtype=float).reshape(-1)
+    a = np.asarray(area_ratio, dtype=float).reshape(-1)
+    # the fast path of every call inside the range (a few µs: Python's max beats a numpy
+    # reduction on the short arrays of single calls)
+    a_max, s_min = (max(a.tolist()), min(s.tolist())) if a.size <= 16 else (a.max(), s.min())
+    if a_max <= limit and s_min >= 0.0:
+        return
+    i = int(np.argmax(a))
+    if a_max > 1.0:
+        message = (f"A/A0 = {a_max:.4g} > 1 at s = {s[i % s.size]:g}: the real contact area would "
+                   "exceed the nominal one, the asperity model has no meaning there (give larger "
+                   "separations or smaller loads)")
         if mode == "refuse":
             raise ValueError(message)
         warnings.warn(message, ModelValidityWarning, stacklevel=3)
-    above = (a > limit) & ~full
-    if np.any(above):
-        i = int(np.argmax(np.where(above, a, -np.inf)))
+    elif a_max > limit:
         warnings.warn(
-            f"A/A0 = {a[i]:.3g} at s = {s[i]:g} exceeds {limit:g}: asperity interaction, which the "
-            "model neglects, is no longer small (contact.validity.AREA_RATIO_LIMIT)",
+            f"A/A0 = {a_max:.3g} at s = {s[i % s.size]:g} exceeds {limit:g}: asperity interaction, "
+            "which the model neglects, is no longer small (contact.validity.AREA_RATIO_LIMIT)",
             ModelValidityWarning, stacklevel=3)
-    if np.any(s < 0.0):
+    if s_min < 0.0:
         warnings.warn(
-            f"separation s = {s.min():g} < 0: the flat lies below the mean plane of the heights, far "
+            f"separation s = {s_min:g} < 0: the flat lies below the mean plane of the heights, far "
             "from the independent-asperity assumptions of the model", ModelValidityWarning, stacklevel=3)
 
 
