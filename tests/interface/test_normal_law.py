@@ -282,7 +282,7 @@ def test_build_stops_on_integrator_noise(monkeypatch):
     def spiked(surface, s, E_star, **kwargs):
         c = production(surface, s, E_star, **kwargs)
         spike = 1.0 + 1e-6 * (np.abs(np.asarray(s) - 1.25) < 1e-12)
-        return SimpleNamespace(pressure=c.pressure * spike, stiffness=c.stiffness)
+        return SimpleNamespace(pressure=c.pressure * spike, stiffness=c.stiffness, area_fraction=c.area_fraction)
 
     monkeypatch.setattr(itf, "elastic_contact", spiked)
     with pytest.raises(RuntimeError, match="not smooth .* near s = 1.2"):

@@ -59,10 +59,10 @@ def test_stiffness_at_matches_direct_evaluation(psi):
     well inside claims.RESOLUTION."""
     surface = SpectralMoments(**TABLE1)
     mat = resolve_material(surface, E_star=E_STAR, psi=psi)
-    c = elastoplastic_contact(surface, S, mat, accuracy="plot")
+    c = elastoplastic_contact(surface, S, mat, accuracy="plot", validity="warn")
     w = np.geomspace(1.0, 1000.0, 9)
     s_w = claims.separation_at(S, c.pressure, c.stiffness, surface.m00, w)
-    direct = elastoplastic_contact(surface, s_w, mat, accuracy="plot")
+    direct = elastoplastic_contact(surface, s_w, mat, accuracy="plot", validity="warn")  # psi = 5: A/A0 = 1.06 at 1000 N/mm²
     np.testing.assert_allclose(direct.pressure, w, rtol=1e-7)
     k = claims.stiffness_at(S, c.pressure, c.stiffness, surface.m00, w)
     np.testing.assert_allclose(k, direct.stiffness, rtol=1e-7)

@@ -311,3 +311,15 @@ def test_config_expected_verdicts_are_well_formed():
     assert verify.expected_for("cell:table1/bgk-paper/pressure/s=3.5", exps, default).expected == REPRODUCED
     assert verify.expected_for("cell:table2/bgk-paper/pressure/s=4.5", exps, default).expected == verify.WITHIN_RESIDUAL
     assert verify.expected_for("cell:table1/bgk-exact/pressure/s=3.5", exps, default).expected == NOT_REPRODUCED
+
+
+def test_report_shows_missing_checks_and_off_band_reasons():
+    data = yaml.safe_load((ROOT / "config" / "expected_verdicts.yaml").read_text())
+    off = verify.apply_expectations([_check("cell:table1/bgk-exact/pressure/s=1.0", NOT_REPRODUCED, 0.376)], data)
+    cov = {"missing": [{"scene": "fig6", "expected": 1, "found": 0}],
+           "skipped": [{"scene": "calculix", "requires": "ccx"}], "unexpected": []}
+    summary = verify.summarize(off, cov)
+    assert not summary["passed"] and summary["coverage"] == cov
+    md = report.render_verification_markdown(off, summary=summary)
+    assert "**MISSING CHECKS** in `fig6`: 0 of 1" in md and "`calculix` skipped: needs `ccx`" in md
+    assert "LEFT ITS DOCUMENTED BAND" in md.split("## Regressions", 1)[1]

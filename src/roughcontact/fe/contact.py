@@ -120,7 +120,7 @@ def statistical_interface(surface, p0: float, *, E_star: float | None = None, ma
                           tangential: str = "free", mu: float | None = None, kT_over_kN=None,
                           nu: float = 0.25, model=None, pressure_range=(1e-12, 100.0),
                           length_per_mm: float = MICROMETRES_PER_MM,
-                          tangential_form: str = "incremental-end") -> InterfaceMaterial:
+                          tangential_form: str = "incremental-end", validity: str = "refuse") -> InterfaceMaterial:
     """The interface of the paper: the statistical normal law of ``surface`` (elastic with
     ``E_star``, or elasto-plastic with an AsperityMaterial ``material``), seated at the pressure
     ``p0`` [N/mm²] (u_N = 0 there), with a tangential restraint:
@@ -135,7 +135,8 @@ def statistical_interface(surface, p0: float, *, E_star: float | None = None, ma
     (:func:`roughcontact.interface.tangential.representative_aspect`) and Poisson's ratio ``nu``.
     ``pressure_range`` [N/mm²]: the tabulated range (below it the law's tail to open contact).
     Lengths of the law in the moments' unit (µm: ``length_per_mm`` = 1000).
-    ``tangential_form``: the reading of (93) with k_T = a k_N(u_N) (InterfaceMaterial)."""
+    ``tangential_form``: the reading of (93) with k_T = a k_N(u_N) (InterfaceMaterial).
+    ``validity``: the table's heavy end against the model's range (NormalLawTable.build)."""
     from ..interface import NormalLawTable, mindlin_kT_over_kN
     from ..interface.tangential import representative_aspect
 
@@ -151,10 +152,11 @@ def statistical_interface(surface, p0: float, *, E_star: float | None = None, ma
     if (E_star is None) == (material is None):
         raise ValueError("give exactly one of E_star (elastic law) and material (elasto-plastic law)")
     if material is None:
-        table = NormalLawTable.build(surface, "elastic", E_star=E_star, pressure_range=pressure_range, accuracy="plot")
+        table = NormalLawTable.build(surface, "elastic", E_star=E_star, pressure_range=pressure_range, accuracy="plot",
+                                     validity=validity)
     else:
         table = NormalLawTable.build(surface, "elastoplastic", material=material, pressure_range=pressure_range,
-                                     accuracy="plot")
+                                     accuracy="plot", validity=validity)
     if kT_over_kN is None:
         kT_over_kN = mindlin_kT_over_kN(representative_aspect(surface), nu)
     law = InterfaceLaw.from_pressure(table, p0, kT_over_kN)

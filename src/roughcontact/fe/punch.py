@@ -323,5 +323,9 @@ def punch_case(run, progress=None) -> PunchResult:
         model, factors = fig18_interface_model(run["case"])
     material = statistical_interface(surface, spec.seating_pressure, model=model, kT_over_kN=factors,
                                      tangential_form=run.get("tangential_form", "incremental-end"),
-                                     pressure_range=(1e-12, 1e4), **law)
+                                     # headroom to 1e4 N/mm² for the punch's edges: past A/A0 = 1
+                                     # (2.2 at s = -2.5 on the Fig. 18 surface) the law has no
+                                     # meaning, so the build warns (contact.validity) instead of
+                                     # refusing a range the runs need not reach
+                                     pressure_range=(1e-12, 1e4), validity="warn", **law)
     return run_punch(spec, material, progress=progress)

@@ -194,7 +194,8 @@ class NormalLawTable:
     # -- construction --------------------------------------------------------------------------
     @classmethod
     def build(cls, surface, level, *, E_star=None, material=None, hertz="exact",
-              pressure_range=None, s_range=None, rtol=1e-6, accuracy="table") -> "NormalLawTable":
+              pressure_range=None, s_range=None, rtol=1e-6, accuracy="table",
+              validity="refuse") -> "NormalLawTable":
         """Build the table once from the production integrators.
 
         surface        SpectralMoments (lengths in L).
@@ -207,6 +208,9 @@ class NormalLawTable:
         s_range        or (s_min, s_max) in s = h/√m00: exactly one of the two.
         rtol           bound on the relative interpolation error of p_N and k_N, in [1e-9, 1e-2].
         accuracy       production preset ("table") or QuadratureSettings.
+        validity       the heavy end against the model's range (contact.validity): "refuse"
+                       (ModelValidityWarning past A/A0 = 0.1 or s < 0, ValueError past
+                       A/A0 = 1), "warn" (a range kept as headroom: warn only), "off".
         """
         instance("surface", surface, SpectralMoments)
         choice("level", level, LEVELS)
@@ -237,7 +241,7 @@ class NormalLawTable:
             h_min = direct.separation_for(p_max * (1.0 + _END_MARGIN))
             h_max = direct.separation_for(p_light * (1.0 - _END_MARGIN))
         # A/A0 is largest at the heavy end: warn past the model's quantitative range, refuse A/A0 > 1
-        check_validity(h_min / surface.height_std, direct.area[h_min])
+        check_validity(h_min / surface.height_std, direct.area[h_min], mode=validity)
         tab, err_p, err_k = _refine(direct, h_min, h_max, rtol)
         return cls(*tab.T.copy(), level=level, hertz=hertz, surface=surface, E_star=E,
                    material=material, accuracy=accuracy, rtol=rtol, max_error_pressure=err_p,

@@ -268,7 +268,8 @@ def render_verification_markdown(
     regs = regressions(checks)
     if regs:
         lines += ["## Regressions", ""]
-        lines += [f"- `{c.id}`: {md_escape(c.detail)}" for c in regs]
+        lines += [f"- `{c.id}`: {md_escape(c.detail)}"
+                  + (f" — {md_escape(c.reason)}" if c.expected != REPRODUCED else "") for c in regs]
         lines.append("")
     imps = improvements(checks)
     if imps:
