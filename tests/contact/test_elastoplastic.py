@@ -209,9 +209,10 @@ def test_table_preset_has_converged_quick():
 def test_table_preset_has_converged(psi):
     s = np.array([-1.0, 0.0, 2.0, 6.0])
     mat = material(psi)
-    fine = elastoplastic_contact(FIG, s, mat, accuracy=QuadratureSettings(6, 6, 6))
+    # convergence over the figures' range: psi = 50 passes A/A0 = 1 at s = -1 (warned, not refused)
+    fine = elastoplastic_contact(FIG, s, mat, accuracy=QuadratureSettings(6, 6, 6), validity="warn")
     for preset, tol in (("table", 1e-11), ("plot", 1e-7)):
-        c = elastoplastic_contact(FIG, s, mat, accuracy=preset)
+        c = elastoplastic_contact(FIG, s, mat, accuracy=preset, validity="warn")
         for i in range(s.size):
             _compare(_prod_columns(c, i), _prod_columns(fine, i), tol)
 

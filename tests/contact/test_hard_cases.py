@@ -204,8 +204,9 @@ def test_elastic_hard_cases_match_mpmath(name, s, hertz):
     measured error is 1.9e-12 (K at s = 0), hence 1e-11 there."""
     surface = SURFACES[name]
     rtol = 1e-11 if name.startswith("alpha") else 1e-12
-    prod = elastic_contact(surface, [s], E_STAR, hertz=hertz)
-    ref = elastic_contact(surface, [s], E_STAR, hertz=hertz, method="reference", dps=20)
+    # numerics at s = -2 too, where A/A0 passes 1 on aniso_1e4 (warned, not refused)
+    prod = elastic_contact(surface, [s], E_STAR, hertz=hertz, validity="warn")
+    ref = elastic_contact(surface, [s], E_STAR, hertz=hertz, method="reference", dps=20, validity="warn")
     for q in QUANTITIES:
         np.testing.assert_allclose(getattr(prod, q), getattr(ref, q), rtol=rtol, err_msg=q)
 
