@@ -32,6 +32,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import machine  # noqa: E402
 
 from roughcontact.contact import sweep  # noqa: E402
+from roughcontact.io import write_text  # noqa: E402
 
 FULL = (50, 50, 400)
 GOAL_SECONDS = 60.0
@@ -103,7 +104,7 @@ def main(argv=None) -> int:
     r["machine"] = info
     r["markdown"] = markdown(r, info)
     Path(args.json).parent.mkdir(parents=True, exist_ok=True)
-    Path(args.json).write_text(json.dumps(r, indent=1))
+    write_text(args.json, json.dumps(r, indent=1))
     print(r["markdown"])
     return 0
 

@@ -18,7 +18,15 @@ __all__ = ["atomic_path"]
 
 
 def _umask() -> int:
-    """The process's umask (read by setting and restoring it; there is no getter)."""
+    """The process umask, read without changing it where /proc allows (no race with threads;
+    elsewhere it is set and restored, there being no getter)."""
+    try:
+        with open("/proc/self/status") as f:
+            for line in f:
+                if line.startswith("Umask:"):
+                    return int(line.split()[1], 8)
+    except OSError:
+        pass
     mask = os.umask(0o022)
     os.umask(mask)
     return mask

@@ -25,13 +25,12 @@ Files are written atomically: to a temporary file in the target's directory, giv
 
 from __future__ import annotations
 
-import os
-import tempfile
 from pathlib import Path
 
 import meshio
 import numpy as np
 
+from ..files import atomic_path
 from .element import HEX20_NODES, Element
 from .mesh import Mesh
 
@@ -117,32 +116,11 @@ def _subquads(face: Element) -> np.ndarray:
 # ---------------------------------------------------------------------------------------------
 # writing
 # ---------------------------------------------------------------------------------------------
-def _umask() -> int:
-    """The process umask, read without changing it where /proc allows (no race with threads)."""
-    try:
-        with open("/proc/self/status") as f:
-            for line in f:
-                if line.startswith("Umask:"):
-                    return int(line.split()[1], 8)
-    except OSError:
-        pass
-    mask = os.umask(0o022)
-    os.umask(mask)
-    return mask
-
-
 def _write(path, m: meshio.Mesh) -> Path:
-    """Write ``m`` as VTU to ``path`` atomically (temporary file + os.replace), mode 0o666 & ~umask."""
+    """Write ``m`` as VTU to ``path`` atomically, mode 0o666 & ~umask (files.atomic_path)."""
     path = Path(path)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    os.close(fd)
-    try:
+    with atomic_path(path) as tmp:
         meshio.write(tmp, m, file_format="vtu")
-        os.chmod(tmp, 0o666 & ~_umask())  # mkstemp's 0600 would make results private
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
     return path
 
 
