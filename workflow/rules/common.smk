@@ -227,6 +227,7 @@ FE_TITLES = {
     "table4": "Table 4: interface deflections of the beam on a rigid base (example 9.1)",
     "fe_beam_study": "Example 9.1: tangential restraint, E* and mesh convergence",
     "table5": "Table 5 and section 9.2: the punch with orthotropic hardening friction (example 9.2)",
+    "calculix": "The exported pressure-overclosure table in CalculiX (optional tool ccx; issue 14)",
 }
 
 
@@ -236,7 +237,7 @@ def drawing_targets():
 
 
 def fe_checks():
-    return [f"results/verify/{name}.checks.csv" for name in ("table4", "fe_beam_study", "table5")]
+    return [f"results/verify/{name}.checks.csv" for name in ("table4", "fe_beam_study", "table5", "calculix")]
 
 
 FE_PUNCH = config["fe"]["punch"]

@@ -13,6 +13,17 @@ A thin layer: parse and validate the arguments, call the library, print the resu
                          [--K-v KV] [--hertz exact|paper] [--method production|reference]
                          [--accuracy table|plot] [--json]
     roughcontact mindlin --b2-over-a2 R [R ...] --nu NU [--json]
+    roughcontact moments FILE --dx DX [--dy DY] [--estimator spectral|fd] [--window hann|none]
+                         [--detrend plane|mean|none] [--lay-angle DEG] [--z-scale F] [--json]
+    roughcontact export --format abaqus|calculix|csv --m00 M ... --m04 M --E-star E
+                         [--law elastic|elastoplastic --psi P] --pressure-range PMIN PMAX
+                         [--rtol 1e-3] [--seating-pressure P0] [--length-scale F] [--stress-scale G]
+                         [--mu MU --kt-over-kn A] [-o FILE] [--json]
+
+The contact commands (elastic, elastoplastic) take --s, --h (length unit) or --pressure (the
+separation solved, load control); E* as --E-star or --E1 --nu1 [--E2 --nu2] (eq. 42); a second
+rough surface with --second-surface M00 M20 M02 M40 M04 (moments summed). Warnings raised during
+a computation are shown in the text output and as the JSON list "warnings".
 
 Exit codes: 0 success; 2 bad input (one line on stderr, "roughcontact: error: ...");
 1 a computed value is not finite. Any other exception is a bug and propagates (traceback).
@@ -188,10 +199,11 @@ def build_parser() -> argparse.ArgumentParser:
     )
     parser.add_argument("--version", action="version", version=f"{PROG} {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
-    from . import contact, fe
+    from . import contact, fe, measured
 
     parents = [_moments_parent(), _output_parent()]
     contact.add_commands(sub, parents)
+    measured.add_commands(sub, parents)
     fe.add_commands(sub, parents)
     return parser
 
