@@ -29,3 +29,22 @@ rule fe_calculix:
     threads: 1
     script:
         "../scripts/fe_calculix.py"
+
+
+rule fe_export_figure:
+    """The figure of docs/fe-export.md: law vs exported rows and the error per row interval."""
+    input:
+        code=PHYSICS_SOURCES + library_sources("interface/export.py") + library_sources("paper/export_figure.py"),
+    output:
+        png="paper_figures/fe_export.png",
+        csv="paper_figures/fe_export.csv",
+    log:
+        "logs/fe/fe_export_figure.log",
+    benchmark:
+        "results/benchmarks/fe/fe_export_figure.tsv"
+    params:
+        cfg=CALCULIX,
+        beam_cfg=FE_BEAM,
+    localrule: True
+    script:
+        "../scripts/fe_export_figure.py"

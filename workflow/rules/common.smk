@@ -220,7 +220,7 @@ def fe_targets():
                                                  "table5.md", "table5.csv", "fe_punch_readings.md",
                                                  "fe_punch_readings.csv", "fig14.png", "fig15.png",
                                                  "fig18.png", "fig18.csv", "fig19.png", "fig19.csv",
-                                                 "fe_benchmark.md")]
+                                                 "fe_benchmark.md", "fe_export.png", "calculix.md")]
 
 
 FE_TITLES = {
