@@ -106,3 +106,8 @@ def test_beam_agrees_with_the_engine(tmp_path):
     for q in ("centre", "end"):
         assert abs(got[f"{q}_um"] - f[f"{q}_um"]) <= CFG["tolerances"]["beam"]["atol"], (q, got, f)
     assert got["centre_node_spread_um"] > 5 * abs(got["centre_um"] - f["centre_um"])  # the ripple is real
+
+
+def test_skipped_scene_says_why():
+    md = calculix.render_markdown([], [], {}, "", skipped_reason="ccx is not installed here")
+    assert "**Skipped**: ccx is not installed here" in md and "calculix-ccx" in md
