@@ -389,6 +389,8 @@ def test_modulus_from_two_bodies_and_two_surfaces(capsys):
     assert b["moments"] == {k: 2 * v for k, v in M.items()}
     code, out, err = run(capsys, "elastic", *MOMENT_ARGS, "--E1", "2e5", "--s", "2")
     assert code == 2 and "--nu1" in err
+    code, out, err = run(capsys, "elastic", *MOMENT_ARGS, "--E-star", E_STAR, "--nu1", "0.3", "--s", "2")
+    assert code == 2 and "not with --E-star" in err and len(err.splitlines()) == 1
 
 
 def test_cli_relays_warnings(capsys, monkeypatch):

@@ -183,6 +183,8 @@ def _add_modulus_options(parser) -> None:
 def effective_modulus_from(args) -> float:
     """E* of --E-star or of --E1/--nu1 [--E2/--nu2] (asperity.effective_modulus, eq. (42))."""
     if args.E_star is not None:
+        if args.nu1 is not None or args.E2 != math.inf or args.nu2 != 0.0:
+            raise CLIError("--nu1, --E2 and --nu2 go with --E1, not with --E-star")
         return args.E_star
     if args.nu1 is None:
         raise CLIError("--E1 needs --nu1")
