@@ -51,8 +51,20 @@ def test_moments_of_a_file_equal_the_library(capsys, tmp_path, suffix):
     assert d["m11_map"] == pytest.approx(ref.m11_map, rel=1e-12)
     assert d["units"]["m00"] == "um^2" and d["units"]["m40"] == "1/um^2"
     assert d["warnings"] == [] and d["shape"] == [64, 96]
+    coarse = measure_heights(z[::2, ::2], 0.8, 0.4, estimator="fd", lay_angle_deg=ref.lay_angle_deg).moments
+    assert d["at_twice_the_interval"]["m04"] == pytest.approx(coarse.m04, rel=1e-12)
+    assert d["ratio_to_twice_the_interval"]["m04"] == pytest.approx(ref.moments.m04 / coarse.m04, rel=1e-12)
     code, out, err = run(capsys, "moments", path, "--dx", "0.4", "--dy", "0.2")
     assert code == 0 and "lay_angle_deg" in out and "m22_over_sqrt_m40_m04" in out
+
+
+def test_moments_saves_the_rotated_map(capsys, tmp_path):
+    z = synthetic_surface(M, (64, 64), 0.4, 0.4, seed=4, lay_angle_deg=30.0)
+    np.save(tmp_path / "z.npy", z)
+    d = run_json(capsys, "moments", tmp_path / "z.npy", "--dx", "0.4", "--save-rotated", tmp_path / "r.npy")
+    r = np.load(tmp_path / "r.npy")
+    assert r.shape == z.shape and np.isnan(r).any() and np.isfinite(r[32, 32])
+    assert abs(d["lay_angle_deg"] - 30.0) < 5.0
 
 
 def test_moments_z_scale(capsys, tmp_path):
