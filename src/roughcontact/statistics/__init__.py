@@ -10,6 +10,8 @@
 """
 
 from .gw import EquivalentGW
+from .measure import MeasuredMoments, measure_heights, measure_profiles
 from .surface import SpectralMoments, gaussian_bearing_area
 
-__all__ = ["SpectralMoments", "gaussian_bearing_area", "EquivalentGW"]
+__all__ = ["SpectralMoments", "gaussian_bearing_area", "EquivalentGW", "MeasuredMoments",
+           "measure_heights", "measure_profiles"]
