@@ -180,6 +180,12 @@ def _add_modulus_options(parser) -> None:
     )
 
 
+def recorded_warnings(caught) -> list[str]:
+    """The messages of warnings recorded by ``warnings.catch_warnings(record=True)``, each once,
+    as "Category: message" (shown as ``warning:`` lines and the JSON list ``warnings``)."""
+    return list(dict.fromkeys(f"{w.category.__name__}: {w.message}" for w in caught))
+
+
 def effective_modulus_from(args) -> float:
     """E* of --E-star or of --E1/--nu1 [--E2/--nu2] (asperity.effective_modulus, eq. (42))."""
     if args.E_star is not None:

@@ -8,7 +8,7 @@ from typing import Any
 from ..statistics import SpectralMoments
 from . import (
     CLOSURES, EP_DEFAULTS, MODELS, SURFACE_UNITS, _MOMENTS, _contact_parent, _real,
-    effective_modulus_from,
+    effective_modulus_from, recorded_warnings,
 )
 
 __all__ = ["add_commands"]
@@ -127,7 +127,7 @@ def _contact(args, surface, compute, **law):
         else:
             s = args.s if args.s is not None else [h / surface.height_std for h in args.h]
             curves = compute(s)
-    messages = list(dict.fromkeys(f"{w.category.__name__}: {w.message}" for w in caught))
+    messages = recorded_warnings(caught)
     extra = {"h": [float(x * surface.height_std) for x in curves.s],
              "pressure_requested": None if args.pressure is None else [float(p) for p in args.pressure],
              "warnings": messages}

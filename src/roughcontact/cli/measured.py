@@ -9,7 +9,9 @@ from typing import Any
 
 import numpy as np
 
-from . import CLIError, EP_DEFAULTS, _MOMENTS, _add_modulus_options, _real, effective_modulus_from
+from . import (
+    CLIError, EP_DEFAULTS, _MOMENTS, _add_modulus_options, _real, effective_modulus_from, recorded_warnings,
+)
 
 __all__ = ["add_commands", "read_height_map"]
 
@@ -117,10 +119,6 @@ def read_height_map(path: str) -> np.ndarray:
     return np.asarray(z, dtype=float)
 
 
-def _recorded(caught) -> list[str]:
-    return list(dict.fromkeys(f"{w.category.__name__}: {w.message}" for w in caught))
-
-
 def _run_moments(args) -> dict[str, Any]:
     from ..statistics.measure import measure_heights, rotate_map
 
@@ -156,7 +154,7 @@ def _run_moments(args) -> dict[str, Any]:
                   "lay_angle_deg": "deg (from the map's x axis to the lay, counter-clockwise)",
                   "dx": L, "dy": L, "wavenumbers": "angular (rad per unit length), no 2*pi in m_pq",
                   "at_twice_the_interval": "as m00 ... m04: the map sampled at 2 dx, 2 dy (band-limit check)"},
-        "warnings": _recorded(caught),
+        "warnings": recorded_warnings(caught),
     }
 
 
@@ -223,7 +221,7 @@ def _run_export(args) -> dict[str, Any]:
         "table": [[float(p) * args.stress_scale, float(c) * args.length_scale]
                   for p, c in zip(table.pressure, table.overclosure)],
         "text": text,
-        "warnings": _recorded(caught),
+        "warnings": recorded_warnings(caught),
     }
 
 
