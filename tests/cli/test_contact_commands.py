@@ -114,10 +114,10 @@ def test_elastic_text_table(capsys):
     assert code == 0 and err == ""
     lines = out.splitlines()
     assert "model=gw" in lines[0]
-    assert lines[1].split() == ["s", "area_fraction", "pressure", "stiffness"]
-    rows = [list(map(float, line.split())) for line in lines[3:]]
+    assert lines[1].split() == ["s", "h", "area_fraction", "pressure", "stiffness"]
+    rows = [list(map(float, line.split())) for line in lines[3:5]]
     assert [r[0] for r in rows] == [1.0, 2.0]
-    assert rows[0][1] == pytest.approx(0.051497, rel=1e-4)
+    assert rows[0][2] == pytest.approx(0.051497, rel=1e-4)
 
 
 def test_choices_match_library():
@@ -183,7 +183,10 @@ def test_elastoplastic_text_table(capsys):
     assert code == 0 and err == ""
     lines = out.splitlines()
     assert "psi=0.5" in lines[0] and "closure=yield-from-psi" in lines[0]
-    assert lines[1].split() == ["s", "area_fraction", "pressure", "stiffness"]
+    assert lines[1].split() == ["s", "h", "area_fraction", "pressure", "stiffness",
+                                "elastic_area_fraction", "elastoplastic_area_fraction",
+                                "plastic_area_fraction", "elastic_pressure",
+                                "elastoplastic_pressure", "plastic_pressure"]
 
 
 def test_version(capsys):
@@ -382,3 +385,64 @@ def test_mindlin_library_messages_pass_through(capsys):
     assert "b2_over_a2 = B^2/A^2 must be finite and > 0" in err
     _, _, err = run(capsys, "mindlin", "--b2-over-a2", "1", "--nu", "0.6")
     assert "-1 < nu <= 0.5" in err
+
+
+# ---------------------------------------------------------------------------------------
+# load control, h, E* from two bodies, two rough surfaces
+# ---------------------------------------------------------------------------------------
+def test_pressure_option_inverts_the_s_option(capsys):
+    a = run_json(capsys, "elastic", *MOMENT_ARGS, "--E-star", E_STAR, "--s", "1", "2.5")
+    b = run_json(capsys, "elastic", *MOMENT_ARGS, "--E-star", E_STAR, "--pressure",
+                 *map(repr, a["pressure"]))
+    assert b["s"] == pytest.approx(a["s"], abs=1e-9)
+    assert b["h"] == pytest.approx([s * M["m00"] ** 0.5 for s in a["s"]], abs=1e-9)
+    assert b["pressure_requested"] == a["pressure"]
+    assert b["stiffness"] == pytest.approx(a["stiffness"], rel=1e-8)
+    assert a["pressure_requested"] is None and a["warnings"] == [] and a["units"]["h"].startswith("L")
+    c = run_json(capsys, "elastic", *MOMENT_ARGS, "--E-star", E_STAR, "--h", *map(repr, a["h"]))
+    assert c["s"] == pytest.approx(a["s"], rel=1e-15)
+
+
+def test_elastoplastic_pressure_text_shows_every_field(capsys):
+    code, out, err = run(capsys, *EP, "--psi", "0.5", "--pressure", "10", "100")
+    assert code == 0 and err == ""
+    d = run_json(capsys, *EP, "--psi", "0.5", "--pressure", "10", "100")
+    for key, value in d.items():
+        if key == "units":
+            continue
+        assert key in out, key
+    assert d["pressure"] == pytest.approx([10.0, 100.0], rel=1e-10)
+
+
+def test_modulus_from_two_bodies_and_two_surfaces(capsys):
+    """E* of (42) from (E1, nu1, E2, nu2) and the sum of the moments of two surfaces."""
+    E1, nu1, E2, nu2 = 2.1e5, 0.3, 1.1e5, 0.34
+    E = 1 / ((1 - nu1**2) / E1 + (1 - nu2**2) / E2)
+    a = run_json(capsys, "elastic", *MOMENT_ARGS, "--E1", str(E1), "--nu1", str(nu1), "--E2", str(E2),
+                 "--nu2", str(nu2), "--s", "2")
+    assert a["E_star"] == pytest.approx(E, rel=1e-15)
+    b = run_json(capsys, "elastic", *MOMENT_ARGS, "--E-star", E_STAR, "--s", "2",
+                 "--second-surface", *map(repr, M.values()))
+    assert b["moments"] == {k: 2 * v for k, v in M.items()}
+    code, out, err = run(capsys, "elastic", *MOMENT_ARGS, "--E1", "2e5", "--s", "2")
+    assert code == 2 and "--nu1" in err
+    code, out, err = run(capsys, "elastic", *MOMENT_ARGS, "--E-star", E_STAR, "--nu1", "0.3", "--s", "2")
+    assert code == 2 and "not with --E-star" in err and len(err.splitlines()) == 1
+
+
+def test_cli_relays_warnings(capsys, monkeypatch):
+    import warnings
+
+    from roughcontact.contact import elastic as elastic_module
+
+    real = elastic_module.elastic_contact
+
+    def warns(*args, **kwargs):
+        warnings.warn("A/A0 above 10 % (test)", UserWarning)
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr("roughcontact.contact.elastic_contact", warns)
+    d = run_json(capsys, "elastic", *MOMENT_ARGS, "--E-star", E_STAR, "--s", "1")
+    assert d["warnings"] == ["UserWarning: A/A0 above 10 % (test)"]
+    code, out, err = run(capsys, "elastic", *MOMENT_ARGS, "--E-star", E_STAR, "--s", "1")
+    assert "warning: UserWarning: A/A0 above 10 % (test)" in out

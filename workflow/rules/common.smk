@@ -259,13 +259,14 @@ def fe_targets():
                                                  "table5.md", "table5.csv", "fe_punch_readings.md",
                                                  "fe_punch_readings.csv", "fig14.png", "fig15.png",
                                                  "fig18.png", "fig18.csv", "fig19.png", "fig19.csv",
-                                                 "fe_benchmark.md")]
+                                                 "fe_benchmark.md", "fe_export.png", "calculix.md")]
 
 
 FE_TITLES = {
     "table4": "Table 4: interface deflections of the beam on a rigid base (example 9.1)",
     "fe_beam_study": "Example 9.1: tangential restraint, E* and mesh convergence",
     "table5": "Table 5 and section 9.2: the punch with orthotropic hardening friction (example 9.2)",
+    "calculix": "The exported pressure-overclosure table in CalculiX (optional tool ccx; issue 14)",
 }
 
 
@@ -275,7 +276,7 @@ def drawing_targets():
 
 
 def fe_checks():
-    return [f"results/verify/{name}.checks.csv" for name in ("table4", "fe_beam_study", "table5")]
+    return [f"results/verify/{name}.checks.csv" for name in ("table4", "fe_beam_study", "table5", "calculix")]
 
 
 FE_PUNCH = config["fe"]["punch"]

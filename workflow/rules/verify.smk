@@ -58,6 +58,7 @@ rule verification_report:
         checks=scene_checks() + fe_checks(),
         speed="paper_figures/speed_vs_error.md",
         fe_speed="paper_figures/fe_benchmark.md",
+        calculix="paper_figures/calculix.md",
         expected="config/expected_verdicts.yaml",
         errata=errata_input,
         code=REPORT_SOURCES,

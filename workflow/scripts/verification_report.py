@@ -30,7 +30,13 @@ def _fe_section(path):
             + "\n".join(lines[start:]).strip() + "\n")
 
 
-def run(checks_files, speed, fe_speed, expected, errata, scene_titles, reference_dps, out, log):
+def _calculix_section(path):
+    """paper_figures/calculix.md without its title: the comparison, or "Skipped" without ccx."""
+    lines = [line for line in Path(path).read_text().splitlines() if not line.startswith("# ")]
+    return "\n".join(("#" + line) if line.startswith("#") else line for line in lines).strip() + "\n"
+
+
+def run(checks_files, speed, fe_speed, calculix, expected, errata, scene_titles, reference_dps, out, log):
     with io.log_to(log) as logger:
         checks = []
         for path in checks_files:
@@ -51,7 +57,8 @@ def run(checks_files, speed, fe_speed, expected, errata, scene_titles, reference
         logger.info("summary: %s", json.dumps({k: v for k, v in summary.items() if k != "by_kind"}))
         io.write_text(out["md"], report.render_verification_markdown(
             checks, errata=errata_list, provenance=provenance, scene_titles=scene_titles,
-            sections={"Speed against error": _speed_section(speed), "FE speed and size": _fe_section(fe_speed)},
+            sections={"Speed against error": _speed_section(speed), "FE speed and size": _fe_section(fe_speed),
+                      "CalculiX cross-check (optional scene calculix, tool ccx)": _calculix_section(calculix)},
             summary=summary))
         io.write_text(out["csv"], verify.checks_to_csv(checks))
         io.write_text(out["summary"], json.dumps(summary, indent=2, sort_keys=True) + "\n")
@@ -59,6 +66,6 @@ def run(checks_files, speed, fe_speed, expected, errata, scene_titles, reference
 
 if "snakemake" in globals():
     sm = snakemake  # noqa: F821
-    run(list(sm.input.checks), sm.input.speed, sm.input.fe_speed, sm.input.expected, list(sm.input.errata), sm.params.scene_titles,
+    run(list(sm.input.checks), sm.input.speed, sm.input.fe_speed, sm.input.calculix, sm.input.expected, list(sm.input.errata), sm.params.scene_titles,
         sm.params.reference_dps, {"md": sm.output.md, "csv": sm.output.csv, "summary": sm.output.summary},
         sm.log[0])

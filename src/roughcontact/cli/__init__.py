@@ -13,6 +13,17 @@ A thin layer: parse and validate the arguments, call the library, print the resu
                          [--K-v KV] [--hertz exact|paper] [--method production|reference]
                          [--accuracy table|plot] [--json]
     roughcontact mindlin --b2-over-a2 R [R ...] --nu NU [--json]
+    roughcontact moments FILE --dx DX [--dy DY] [--estimator spectral|fd] [--window hann|none]
+                         [--detrend plane|mean|none] [--lay-angle DEG] [--z-scale F] [--json]
+    roughcontact export --format abaqus|calculix|csv --m00 M ... --m04 M --E-star E
+                         [--law elastic|elastoplastic --psi P] --pressure-range PMIN PMAX
+                         [--rtol 1e-3] [--seating-pressure P0] [--length-scale F] [--stress-scale G]
+                         [--mu MU --kt-over-kn A] [-o FILE] [--json]
+
+The contact commands (elastic, elastoplastic) take --s, --h (length unit) or --pressure (the
+separation solved, load control); E* as --E-star or --E1 --nu1 [--E2 --nu2] (eq. 42); a second
+rough surface with --second-surface M00 M20 M02 M40 M04 (moments summed). Warnings raised during
+a computation are shown in the text output and as the JSON list "warnings".
 
 Exit codes: 0 success; 2 bad input (one line on stderr, "roughcontact: error: ...");
 1 a computed value is not finite. Any other exception is a bug and propagates (traceback).
@@ -143,14 +154,16 @@ def _output_parent() -> argparse.ArgumentParser:
 def _contact_parent() -> argparse.ArgumentParser:
     """Options shared by the contact commands (elastic, elastoplastic)."""
     parent = _Parser(add_help=False)
-    parent.add_argument(
-        "--E-star", dest="E_star", type=_real, required=True, metavar="E",
-        help="effective modulus E* (any stress unit; the pressure comes out in it)",
-    )
-    parent.add_argument(
-        "--s", dest="s", type=_real, nargs="+", required=True, metavar="S",
+    _add_modulus_options(parent)
+    where = parent.add_mutually_exclusive_group(required=True)
+    where.add_argument(
+        "--s", dest="s", type=_real, nargs="+", metavar="S",
         help="separations s = h/sqrt(m00) of the flat from the mean plane",
     )
+    where.add_argument("--h", dest="h", type=_real, nargs="+", metavar="H",
+                       help="separations h of the flat from the mean plane [L]")
+    where.add_argument("--pressure", dest="pressure", type=_real, nargs="+", metavar="P",
+                       help="nominal pressures W/A0 (unit of E*): the separation is solved (load control)")
     parent.add_argument("--hertz", choices=HERTZ, default="exact",
                         help="Hertz functions: exact, or the paper's approximations (default exact)")
     parent.add_argument("--method", choices=METHODS, default="production",
@@ -158,6 +171,47 @@ def _contact_parent() -> argparse.ArgumentParser:
     parent.add_argument("--accuracy", choices=ACCURACIES, default="table",
                         help="production quadrature preset (default table)")
     return parent
+
+
+def _add_modulus_options(parser) -> None:
+    """E* directly, or from the two bodies' (E, nu) (eq. (42)); a second rough surface."""
+    modulus = parser.add_mutually_exclusive_group(required=True)
+    modulus.add_argument(
+        "--E-star", dest="E_star", type=_real, metavar="E",
+        help="effective modulus E* (any stress unit; the pressure comes out in it)",
+    )
+    modulus.add_argument("--E1", dest="E1", type=_real, metavar="E",
+                         help="Young's modulus of body 1 (with --nu1; E* = 1/((1-nu1^2)/E1 + (1-nu2^2)/E2), eq. (42))")
+    parser.add_argument("--nu1", dest="nu1", type=_real, metavar="NU", help="Poisson's ratio of body 1")
+    parser.add_argument("--E2", dest="E2", type=_real, default=math.inf, metavar="E",
+                        help="Young's modulus of body 2 (default: rigid)")
+    parser.add_argument("--nu2", dest="nu2", type=_real, default=0.0, metavar="NU",
+                        help="Poisson's ratio of body 2 (default 0)")
+    parser.add_argument(
+        "--second-surface", dest="second_surface", type=_real, nargs=5, default=None,
+        metavar=("M00", "M20", "M02", "M40", "M04"),
+        help="moments of the second rough surface (same lay frame and unit): the contact of "
+        "two rough surfaces is that of their sum with a flat",
+    )
+
+
+def recorded_warnings(caught) -> list[str]:
+    """The messages of warnings recorded by ``warnings.catch_warnings(record=True)``, each once,
+    as "Category: message" (shown as ``warning:`` lines and the JSON list ``warnings``)."""
+    return list(dict.fromkeys(f"{w.category.__name__}: {w.message}" for w in caught))
+
+
+def effective_modulus_from(args) -> float:
+    """E* of --E-star or of --E1/--nu1 [--E2/--nu2] (asperity.effective_modulus, eq. (42))."""
+    if args.E_star is not None:
+        if args.nu1 is not None or args.E2 != math.inf or args.nu2 != 0.0:
+            raise CLIError("--nu1, --E2 and --nu2 go with --E1, not with --E-star")
+        return args.E_star
+    if args.nu1 is None:
+        raise CLIError("--E1 needs --nu1")
+    from ..asperity import effective_modulus
+
+    return effective_modulus(args.E1, args.nu1, args.E2, args.nu2)
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -168,10 +222,11 @@ def build_parser() -> argparse.ArgumentParser:
     )
     parser.add_argument("--version", action="version", version=f"{PROG} {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
-    from . import contact, fe
+    from . import contact, fe, measured
 
     parents = [_moments_parent(), _output_parent()]
     contact.add_commands(sub, parents)
+    measured.add_commands(sub, parents)
     fe.add_commands(sub, parents)
     return parser
 

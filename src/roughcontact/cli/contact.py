@@ -2,10 +2,14 @@
 
 from __future__ import annotations
 
+import warnings
 from typing import Any
 
 from ..statistics import SpectralMoments
-from . import CLOSURES, EP_DEFAULTS, MODELS, SURFACE_UNITS, _MOMENTS, _contact_parent, _real
+from . import (
+    CLOSURES, EP_DEFAULTS, MODELS, SURFACE_UNITS, _MOMENTS, _contact_parent, _real,
+    effective_modulus_from, recorded_warnings,
+)
 
 __all__ = ["add_commands"]
 
@@ -96,7 +100,11 @@ def _add_mindlin(sub, parents) -> None:
 # handlers: args -> payload (plain JSON-able dict)
 # ---------------------------------------------------------------------------------------
 def _surface_from(args) -> SpectralMoments:
-    return SpectralMoments(*(getattr(args, name) for name in _MOMENTS))
+    """The moments of the command line, plus those of --second-surface where given (the sum:
+    two rough surfaces as one on a flat, SpectralMoments.combined_with)."""
+    surface = SpectralMoments(*(getattr(args, name) for name in _MOMENTS))
+    second = getattr(args, "second_surface", None)
+    return surface if second is None else surface.combined_with(SpectralMoments(*second))
 
 
 def _run_surface(args) -> dict[str, Any]:
@@ -105,26 +113,56 @@ def _run_surface(args) -> dict[str, Any]:
     return {**summary, "units": {k: SURFACE_UNITS[k] for k in summary}}
 
 
+def _contact(args, surface, compute, **law):
+    """Run the contact model at --s, --h or --pressure; relay warnings. Returns (curves, extra
+    payload fields: h [L], the requested pressures, the warnings)."""
+    from ..contact.at_pressure import contact_at_pressure
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        if args.pressure is not None:
+            result = contact_at_pressure(surface, args.pressure, hertz=args.hertz,
+                                         accuracy=args.accuracy, **law)
+            curves = result.curves
+        else:
+            s = args.s if args.s is not None else [h / surface.height_std for h in args.h]
+            curves = compute(s)
+    messages = recorded_warnings(caught)
+    extra = {"h": [float(x * surface.height_std) for x in curves.s],
+             "pressure_requested": None if args.pressure is None else [float(p) for p in args.pressure],
+             "warnings": messages}
+    return curves, extra
+
+
 def _run_elastic(args) -> dict[str, Any]:
     from ..contact import elastic_contact
 
     surface = _surface_from(args)
-    curves = elastic_contact(
-        surface, args.s, args.E_star,
-        model=args.model, hertz=args.hertz, method=args.method, accuracy=args.accuracy,
+    E_star = effective_modulus_from(args)
+    if args.pressure is not None and args.method != "production":
+        raise ValueError("--pressure solves with the production integrators: drop --method reference")
+    curves, extra = _contact(
+        args, surface,
+        lambda s: elastic_contact(surface, s, E_star, model=args.model, hertz=args.hertz,
+                                  method=args.method, accuracy=args.accuracy),
+        E_star=E_star, model=args.model,
     )
     return {
         "s": [float(x) for x in curves.s],
+        "h": extra["h"],
         "area_fraction": [float(x) for x in curves.area_fraction],
         "pressure": [float(x) for x in curves.pressure],
         "stiffness": [float(x) for x in curves.stiffness],
-        "units": dict(curves.units),
+        "pressure_requested": extra["pressure_requested"],
+        "units": dict(curves.units) | {"h": "L (the moments' length unit)",
+                                       "pressure_requested": "unit of E*"},
         "model": curves.model,
         "hertz": curves.hertz,
         "method": curves.method,
         "accuracy": args.accuracy if curves.method == "production" else None,
         "E_star": curves.E_star,
         "moments": surface.as_dict(),
+        "warnings": extra["warnings"],
     }
 
 
@@ -133,32 +171,42 @@ def _run_elastoplastic(args) -> dict[str, Any]:
     from ..contact.closures import default_closure, resolve_material
 
     surface = _surface_from(args)
+    if args.pressure is not None and args.method != "production":
+        raise ValueError("--pressure solves with the production integrators: drop --method reference")
     material = resolve_material(
-        surface, E_star=args.E_star, psi=args.psi, Y=args.Y, closure=args.closure, H=args.H,
-        yield_coefficient=args.yield_coefficient, c_h=args.c_h, wp_over_wc=args.wp_over_wc,
-        K_v=args.K_v,
+        surface, E_star=effective_modulus_from(args), psi=args.psi, Y=args.Y, closure=args.closure,
+        H=args.H, yield_coefficient=args.yield_coefficient, c_h=args.c_h,
+        wp_over_wc=args.wp_over_wc, K_v=args.K_v,
     )
-    curves = elastoplastic_contact(
-        surface, args.s, material, hertz=args.hertz, method=args.method, accuracy=args.accuracy
+    curves, extra = _contact(
+        args, surface,
+        lambda s: elastoplastic_contact(surface, s, material, hertz=args.hertz, method=args.method,
+                                        accuracy=args.accuracy),
+        material=material,
     )
     fields = ("area_fraction", "pressure", "stiffness", "elastic_area_fraction",
-              "elastoplastic_area_fraction", "plastic_area_fraction")
+              "elastoplastic_area_fraction", "plastic_area_fraction", "elastic_pressure",
+              "elastoplastic_pressure", "plastic_pressure")
     m = curves.material
     return {
         "s": [float(x) for x in curves.s],
+        "h": extra["h"],
         **{f: [float(x) for x in getattr(curves, f)] for f in fields},
+        "pressure_requested": extra["pressure_requested"],
         "psi": float(curves.psi),
         "closure": args.closure or default_closure(args.psi, args.Y),
         "material": {"E_star": m.E_star, "Y": m.Y, "H": m.H, "yield_coefficient": m.yield_coefficient,
                      "c_h": m.c_h, "wp_over_wc": m.wp_over_wc, "K_v": m.K_v},
         "units": {k: v for k, v in curves.units.items() if k in ("s", *fields)}
-        | {"psi": "1", "material": "stresses in the unit of E*"},
+        | {"psi": "1", "material": "stresses in the unit of E*", "h": "L (the moments' length unit)",
+           "pressure_requested": "unit of E*"},
         "model": "bgk-elastoplastic",
         "hertz": curves.hertz,
         "method": curves.method,
         "accuracy": args.accuracy if curves.method == "production" else None,
         "E_star": m.E_star,
         "moments": surface.as_dict(),
+        "warnings": extra["warnings"],
     }
 
 
@@ -182,22 +230,36 @@ def _render_surface(payload: dict[str, Any]) -> str:
 
 
 def _render_elastic(payload: dict[str, Any]) -> str:
+    """Every field of the payload: scalars in the head, per-point lists as columns (with their
+    units), the moments and material below, then the warnings."""
     head = (
         f"model={payload['model']}  hertz={payload['hertz']}  method={payload['method']}"
-        f"  E*={payload['E_star']:.8g}"
+        f"  accuracy={payload['accuracy']}  E*={payload['E_star']:.8g}"
     )
     if "psi" in payload:
         head += f"  psi={payload['psi']:.6g}  closure={payload['closure']}"
-    cols = ("s", "area_fraction", "pressure", "stiffness")
-    units = ("h/sqrt(m00)", "A/A0", "unit of E*", "E*-unit/L")
-    w = 16
+    n = len(payload["s"])
+    cols = [k for k, v in payload.items() if isinstance(v, list) and len(v) == n and k != "warnings"]
+    if payload["pressure_requested"] is None:
+        lines_note = "pressure_requested=None (separations given)"
+    else:
+        lines_note = "pressure_requested: the column above (load control)"
+    units = payload["units"]
+    w = [max(16, len(c) + 2) for c in cols]
     lines = [
         head,
-        "".join(f"{c:>{w}}" for c in cols),
-        "".join(f"{'[' + u + ']':>{w}}" for u in units),
+        "".join(f"{c:>{wc}}" for c, wc in zip(cols, w)),
+        "".join(f"{'[' + units.get(c, '').split(' (')[0] + ']':>{wc}}" for c, wc in zip(cols, w)),
     ]
     for row in zip(*(payload[c] for c in cols)):
-        lines.append("".join(f"{v:>{w}.8g}" for v in row))
+        lines.append("".join(f"{v:>{wc}.8g}" for v, wc in zip(row, w)))
+    lines.append(lines_note)
+    lines.append("moments: " + "  ".join(f"{k}={v:.8g}" for k, v in payload["moments"].items()))
+    if "material" in payload:
+        lines.append("material: " + "  ".join(f"{k}={v:.8g}" for k, v in payload["material"].items()))
+    lines.append("units: " + "; ".join(f"{k}: {v}" for k, v in units.items()))
+    lines.append(f"warnings: {len(payload['warnings'])}")
+    lines.extend(f"warning: {m}" for m in payload["warnings"])
     return "\n".join(lines)
 
 

@@ -7,6 +7,7 @@ engine evaluates at every interface point.
 * :mod:`.tangential` — Mindlin's k_N/k_T for elliptical contacts, (96)/Table 3;
 * :mod:`.friction` — orthotropic (8.1) and isotropic (8.2) hardening friction: the implicit
   return mapping and its consistent tangent, the owner of the sign convention of u_N;
+* :mod:`.export` — the normal law as a pressure–overclosure table for Abaqus / CalculiX / CSV;
 * :mod:`.kernels` — their numba kernels; :mod:`.reference` — the slow twins.
 """
 

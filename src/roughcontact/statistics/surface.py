@@ -159,6 +159,31 @@ class SpectralMoments:
         m04 = m02 * (math.pi * densities.extrema_y) ** 2
         return cls(m00, m20, m02, m40, m04)
 
+    @classmethod
+    def from_heights(cls, z, dx, dy=None, **options) -> "SpectralMoments":
+        """The moments in the lay frame measured on a height map z[i, j] at x = j·dx, y = i·dy
+        [L] (:func:`roughcontact.statistics.measure.measure_heights`, which also reports the lay
+        angle, m11, m22 and the estimator; options: estimator, window, detrend, lay_angle_deg)."""
+        from .measure import measure_heights
+
+        return measure_heights(z, dx, dy, **options).moments
+
+    @classmethod
+    def from_profiles(cls, along, across, dx, dy=None, **options) -> "SpectralMoments":
+        """The moments from profiles along the lay (interval dx [L]) and across it (dy)
+        (:func:`roughcontact.statistics.measure.measure_profiles`)."""
+        from .measure import measure_profiles
+
+        return measure_profiles(along, across, dx, dy, **options)
+
+    def combined_with(self, other: "SpectralMoments") -> "SpectralMoments":
+        """Two rough surfaces in contact as one rough surface on a flat: the sum of the
+        heights' moments (independent surfaces, same lay frame; Greenwood & Tripp 1970,
+        O'Callaghan & Cameron 1976, McCool 1986 section 2)."""
+        if not isinstance(other, SpectralMoments):
+            raise ValueError(f"other must be a SpectralMoments, got {type(other).__name__}")
+        return SpectralMoments(*(getattr(self, n) + getattr(other, n) for n in _MOMENT_NAMES))
+
     # -- conventions for the separation -----------------------------------------------------
     def l_from_s(self, s):
         """The integration variable l = s/√μ of (23), from s = h/√m00."""

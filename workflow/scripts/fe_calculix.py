@@ -1,0 +1,34 @@
+"""The exported table checked in CalculiX (rule fe_calculix): paper_figures/calculix.md/.csv and
+results/verify/calculix.checks.csv. An optional scene: without ccx it writes no checks and says
+why (VERIFICATION.md then reports it as skipped)."""
+
+from roughcontact import io
+from roughcontact.paper import calculix, report, verify
+
+
+def run(cfg, beam_cfg, paths, workdir, out, log):
+    with io.log_to(log) as logger:
+        exe = calculix.ccx_executable()
+        if exe is None:
+            logger.info("ccx not found on PATH: the CalculiX scene is skipped")
+            io.write_text(out["md"], calculix.render_markdown([], [], {}, "", skipped_reason="ccx is not installed here"))
+            io.write_text(out["csv"], "")
+            io.write_text(out["checks"], verify.checks_to_csv([]))
+            return
+        engine = {}
+        for case, path in paths.items():
+            ds = io.read_netcdf(path)
+            engine[case] = (ds["point_x"].values, ds["point_y"].values, ds["point_u_N_um"].values)
+        rows, checks, timings = calculix.run_scene(cfg, beam_cfg, engine, workdir, exe=exe, progress=logger.info)
+        for c in checks:
+            logger.info("%s: %s %s", c.id, c.verdict, c.detail)
+        io.write_text(out["md"], calculix.render_markdown(rows, checks, timings, calculix.ccx_version(exe)))
+        keys = list(dict.fromkeys(k for r in rows for k in r))  # block and beam rows: one header
+        io.write_text(out["csv"], report.render_rows_csv([{k: r.get(k, "") for k in keys} for r in rows]))
+        io.write_text(out["checks"], verify.checks_to_csv(checks))
+
+
+if "snakemake" in globals():
+    sm = snakemake  # noqa: F821
+    run(sm.params.cfg, sm.params.beam_cfg, sm.params.paths, sm.output.workdir,
+        {"md": sm.output.md, "csv": sm.output.csv, "checks": sm.output.checks}, sm.log[0])
