@@ -446,3 +446,14 @@ def test_cli_relays_warnings(capsys, monkeypatch):
     assert d["warnings"] == ["UserWarning: A/A0 above 10 % (test)"]
     code, out, err = run(capsys, "elastic", *MOMENT_ARGS, "--E-star", E_STAR, "--s", "1")
     assert "warning: UserWarning: A/A0 above 10 % (test)" in out
+
+
+def test_validity_warnings_reach_the_json_and_stderr_at_a_height(capsys):
+    """--h (a length) below the mean plane: the library's ModelValidityWarning is in the JSON list
+    ``warnings`` and on stderr, once each (issue 14's relay and issue 12's one-line print)."""
+    code, out, err = run(capsys, "elastic", *_moments(), "--E-star", E_STAR, "--h", "-0.25", "--json")
+    payload = json.loads(out)
+    assert code == 0 and payload["s"][0] == pytest.approx(-1.0)  # sigma = sqrt(m00) = 0.25 µm
+    assert len(payload["warnings"]) == 2
+    assert all(m.startswith("ModelValidityWarning: ") for m in payload["warnings"])
+    assert len(err.splitlines()) == 2 and "s = -1 < 0" in err

@@ -73,14 +73,17 @@ def _pressures(p) -> np.ndarray:
 
 
 def contact_at_pressure(surface: SpectralMoments, p, *, E_star=None, material=None, model="bgk",
-                        hertz="exact", accuracy="table", rtol=DEFAULT_RTOL) -> ContactAtPressure:
+                        hertz="exact", accuracy="table", rtol=DEFAULT_RTOL,
+                        validity="refuse") -> ContactAtPressure:
     """Contact at nominal pressures p = W/A0 [unit of E*].
 
     Give ``E_star`` for the elastic model (``model`` "bgk" or "gw", eqs. (52), (53), (55)) or
     ``material`` (:class:`~roughcontact.asperity.AsperityMaterial`) for the elasto-plastic one
     ((78)–(85)). rtol: relative tolerance on W/A0 = p (default 1e-10; the production
     integrators are accurate to ~1e-13). ValueError when a pressure cannot be reached within
-    s ∈ [−S_MAX, S_MAX] (37) or the pressure is not monotone there.
+    s ∈ [−S_MAX, S_MAX] (37) or the pressure is not monotone there. validity: what to do where the
+    solution lies outside the model's range (contact.validity; the Newton iterates are not judged,
+    only the separations found).
     """
     instance("surface", surface, SpectralMoments)
     if (E_star is None) == (material is None):
@@ -94,15 +97,16 @@ def contact_at_pressure(surface: SpectralMoments, p, *, E_star=None, material=No
         raise ValueError(f"rtol must lie in [1e-14, 1e-2], got {rtol!r}")
     target = _pressures(p)
 
-    def evaluate(s):
+    def evaluate(s, validity="off"):
         if material is None:
-            return elastic_contact(surface, s, E_star, model=model, hertz=hertz, accuracy=accuracy)
-        return elastoplastic_contact(surface, s, material, hertz=hertz, accuracy=accuracy)
+            return elastic_contact(surface, s, E_star, model=model, hertz=hertz, accuracy=accuracy,
+                                   validity=validity)
+        return elastoplastic_contact(surface, s, material, hertz=hertz, accuracy=accuracy, validity=validity)
 
     with _warnings.catch_warnings(record=True) as caught:
         _warnings.simplefilter("always")
         s = _solve(evaluate, target, surface.height_std, rtol)
-        curves = evaluate(s)
+        curves = evaluate(s, validity)
     messages = []
     for w in caught:
         text = f"{w.category.__name__}: {w.message}"
