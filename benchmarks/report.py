@@ -145,7 +145,7 @@ def write_netcdf(results: dict, path: Path) -> None:
             "relative_error": (("row", "quantity"), err, {"units": "1", "long_name": "|value/reference - 1|"}),
         },
         coords={"quantity": ("quantity", list(QUANTITIES), {"units": "1", "long_name": "A/A0, W/A0, K/A0"}),
-                "row": ("row", np.arange(len(rows)), {"units": "1"})},
+                "row": ("row", np.arange(len(rows)), {"units": "1", "long_name": "benchmark setting (row of the table)"})},
     )
     ds.attrs["machine"] = json.dumps(results["machine_before"])
     _write(ds, path, settings={"benchmark": "speed_vs_error", "mode": results["mode"], "repeat": results["repeat"]})
@@ -154,7 +154,7 @@ def write_netcdf(results: dict, path: Path) -> None:
 def figure(results: dict, path) -> None:
     """Error (log) against time per separation (log), one curve per method family, per
     quantity; each marker one setting: median time over the points, worst error over them."""
-    from roughcontact.paper.plots import new_figure, save
+    from roughcontact.paper.style import legend_outside, new_figure, save
 
     styles = {
         "production": dict(color="#1b4f72", marker="o", ls="-"),
@@ -185,8 +185,7 @@ def figure(results: dict, path) -> None:
             ax.set_xlabel("time per separation [s]")
             if q == 0:
                 ax.set_ylabel("relative error (worst over points)")
-    axes[0, 0].legend(loc="lower left", fontsize=7)
-    fig.tight_layout()
+    legend_outside(fig, axes[0, 0], where="bottom", ncol=6, fontsize=8)  # off the data
     save(fig, path)
 
 
