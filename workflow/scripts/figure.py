@@ -113,7 +113,7 @@ def friction_slip_rule(scene, cfg, ds):
     panels = {
         f"{first}: mu = ({float(e['mu_x']):g}, {float(e['mu_y']):g}), k = {k:g}": dict(
             mu_x=float(e["mu_x"]), mu_y=float(e["mu_y"]), ratio=float(e["nu_y_over_nu_x"].sel(k=k)),
-            p_N=float(ds.attrs["p_N"]), **{v: e[v].sel(k=k).values for v in ("t_x", "t_y", "up_x", "up_y")})
+            p_N=1.0, **{v: e[v].sel(k=k).values for v in ("t_x", "t_y", "up_x", "up_y")})
         for k in e["k"].values
     }
     fig = plots.fig9(panels)
