@@ -231,8 +231,9 @@ FE_TITLES = {
 
 
 def drawing_targets():
-    """The element drawings (workflow/rules/drawings.smk)."""
-    return [f"paper_figures/{fig}.{ext}" for fig in ("fig11", "fig12", "fig16", "fig17") for ext in ("png", "csv")]
+    """The element drawings and Figs 1-2 (workflow/rules/drawings.smk)."""
+    figs = ("fig11", "fig12", "fig16", "fig17", *config.get("geometry_figures", {}))
+    return [f"paper_figures/{fig}.{ext}" for fig in figs for ext in ("png", "csv")]
 
 
 def fe_checks():

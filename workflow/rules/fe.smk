@@ -57,6 +57,7 @@ rule fe_fig13:
         code=FE_REPORT_SOURCES,
     output:
         png="paper_figures/fig13.png",
+        pdf="paper_figures/fig13.pdf",  # vector, beside the PNG (paper.style.save)
         csv="paper_figures/fig13.csv",
     log:
         "logs/fe/fig13.log",
@@ -95,6 +96,7 @@ rule fe_fig10:
         code=library_sources("fe", "paper/drawings.py", "paper/plots.py"),
     output:
         png="paper_figures/fig10.png",
+        pdf="paper_figures/fig10.pdf",  # vector, beside the PNG (paper.style.save)
     log:
         "logs/fe/fig10.log",
     params:
@@ -221,6 +223,7 @@ rule fe_punch_slips:
         code=FE_REPORT_SOURCES + library_sources("paper/fe_punch.py"),
     output:
         png="paper_figures/{fig}.png",
+        pdf="paper_figures/{fig}.pdf",  # vector, beside the PNG (paper.style.save)
         csv="paper_figures/{fig}.csv",
     log:
         "logs/fe/{fig}.log",
@@ -241,6 +244,7 @@ rule fe_punch_mesh_figure:
         code=library_sources("fe", "paper/drawings.py", "paper/plots.py"),
     output:
         png="paper_figures/{fig}.png",
+        pdf="paper_figures/{fig}.pdf",  # vector, beside the PNG (paper.style.save)
     log:
         "logs/fe/{fig}.log",
     wildcard_constraints:

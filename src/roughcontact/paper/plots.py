@@ -14,11 +14,12 @@ from typing import Mapping, Sequence
 import numpy as np
 
 from .style import STYLE, axis_label, color, legend_outside, new_figure, note, ordered_colors, save, style
+from .style import pretty_unit as pretty
 
 __all__ = [
     "STYLE", "style", "new_figure", "save", "fig3", "fig4", "fig5", "fig6", "stiffness_vs_pressure",
     "stiffness_sensitivity", "fig9", "slip_hardening", "friction_cases", "fig13", "punch_slips",
-    "largest_gap",
+    "largest_gap", "fig1", "fig2",
 ]
 
 _COLORS = [color(i) for i in range(5)]
@@ -257,8 +258,8 @@ def fig9(panels: Mapping[str, dict], *, units: str = "1"):
             ax.set_xlim(-lim, lim)
             ax.set_ylim(-lim, lim)
             ax.set_aspect("equal")
-            ax.set_xlabel(axis_label(r"traction $t_x$", units))
-            ax.set_ylabel(axis_label(r"traction $t_y$", units))
+            ax.set_xlabel(axis_label(r"traction $t_x/p_N$" if units == "1" else r"traction $t_x$", units))
+            ax.set_ylabel(axis_label(r"traction $t_y/p_N$" if units == "1" else r"traction $t_y$", units))
             ax.set_title(title, fontsize=9)
         legend_outside(fig, where="bottom", ncol=3, fontsize=8)
     return fig
@@ -371,4 +372,98 @@ def punch_slips(panels: Mapping[str, Mapping[str, dict]], *, title: str):
             bar.ax.yaxis.set_major_formatter(FormatStrFormatter("%.2g"))
             bar.ax.yaxis.set_minor_formatter(NullFormatter())
         fig.legend(handles, labels, loc="outside lower center", ncol=2, fontsize=8)
+    return fig
+
+
+def fig1(profile, image, extent, *, length_unit: str = "um"):
+    """Fig. 1: (a) a patch of the generated height map (``image`` [L] over ``extent`` = (x0, x1,
+    y0, y1)) with the profile's line; (b) the profile across the lay with the surface's mean
+    plane, the mean plane of the summits at δ (73), the mean height of the map's summits and
+    the smooth flat at h (``profile``: :class:`roughcontact.paper.geometry.SurfaceProfile`)."""
+    p = profile
+    with style():
+        fig = new_figure(figsize=(10.0, 4.4))
+        ax_map, ax = fig.subplots(1, 2, width_ratios=(1.0, 2.2))
+        fig.get_layout_engine().set(wspace=0.08)  # room between the colour bar and panel (b)
+        lim = float(np.max(np.abs(image)))
+        im = ax_map.imshow(image, origin="lower", extent=extent, cmap="RdBu_r", vmin=-lim, vmax=lim,
+                           interpolation="nearest")
+        x_line = 0.5 * (extent[0] + extent[1])
+        ax_map.plot([x_line, x_line], [p.y[0], p.y[-1]], color="k", lw=1.0)
+        ax_map.set_xlabel(axis_label("x (along the lay)", length_unit))
+        ax_map.set_ylabel(axis_label("y", length_unit))
+        ax_map.set_title("(a) generated surface, profile line", fontsize=9)
+        ax_map.grid(False)
+        fig.colorbar(im, ax=ax_map, label=axis_label("height z", length_unit), shrink=0.8)
+        ax.plot(p.y, p.z, color=color(0), lw=1.0, label="profile z(y)")
+        u = pretty(length_unit)
+        ax.plot(p.summit_y, p.summit_z, "^", color=color(0), ms=5, mfc="none",
+                label=f"summits of the map within ±{p.band:g} {u} of the line")
+        ax.axhline(0.0, color="0.3", lw=1.0, label="mean plane of the surface")
+        ax.axhline(p.delta, color=color(1), lw=1.2, ls="--",
+                   label=rf"mean plane of the summits, $\delta$ (73) = {p.delta:.3g} {u}")
+        ax.axhline(p.map_summit_mean, color=color(2), lw=1.2, ls=":",
+                   label=f"mean height of the map's {p.map_summits} summits = {p.map_summit_mean:.3g} {u} (coincides)")
+        ax.axhline(p.flat, color="k", lw=2.5, label=f"smooth flat at h = {p.flat:.3g} {u}")
+        x_arrow = p.y[0] + 0.03 * (p.y[-1] - p.y[0])
+        ax.annotate("", (x_arrow, p.delta), (x_arrow, 0.0), arrowprops=dict(arrowstyle="<->", color=color(1), lw=1.0))
+        ax.text(x_arrow, 0.5 * p.delta, rf" $\delta$", color=color(1), va="center", fontsize=10,
+                bbox=dict(boxstyle="round,pad=0.1", fc="white", ec="none", alpha=0.8))
+        ax.set_xlim(p.y[0], p.y[-1])
+        ax.set_xlabel(axis_label("y (across the lay)", length_unit))
+        ax.set_ylabel(axis_label("height z", length_unit))
+        ax.set_title("(b) profile across the lay (heights exaggerated)", fontsize=9)
+        legend_outside(fig, ax, where="bottom", ncol=2, fontsize=8)
+    return fig
+
+
+def _ellipse(ax, a, b, **kwargs):
+    t = np.linspace(0.0, 2.0 * np.pi, 241)
+    return ax.plot(a * np.cos(t), b * np.sin(t), **kwargs)
+
+
+def fig2(g, *, length_unit: str = "um"):
+    """Fig. 2: one elliptic-paraboloid asperity (19) cut by the plane at interference ω: (a) the
+    cap above the plane with the geometric ellipse a, b; (b) plan view: the geometric ellipse
+    (20)–(21) and the Hertz contact ellipse A, B of (26)–(27) (``g``:
+    :class:`roughcontact.paper.geometry.AsperityGeometry`)."""
+    u = pretty(length_unit)
+    with style():
+        fig = new_figure(figsize=(10.5, 4.6))
+        ax3 = fig.add_subplot(1, 2, 1, projection="3d")
+        r, t = np.meshgrid(np.linspace(0.0, 1.0, 25), np.linspace(0.0, 2.0 * np.pi, 73))
+        x, y = r * g.a * np.cos(t), r * g.b * np.sin(t)
+        z = g.height(x, y) + g.interference  # the cap above the cutting plane z = h
+        ax3.plot_surface(x, y, z, cmap="viridis", alpha=0.55, linewidth=0, antialiased=True)
+        side = 1.3 * max(g.a, g.b)
+        px, py = np.meshgrid([-side, side], [-side, side])
+        ax3.plot_surface(px, py, 0.0 * px, color="0.6", alpha=0.15, linewidth=0)  # the plane z = h
+        tt = np.linspace(0.0, 2.0 * np.pi, 241)
+        ax3.plot(g.a * np.cos(tt), g.b * np.sin(tt), 0.0 * tt, color=color(1), lw=2.0, label="geometric ellipse a, b")
+        ax3.plot(g.A * np.cos(tt), g.B * np.sin(tt), 0.0 * tt, color="k", lw=1.5, label="contact ellipse A, B")
+        ax3.plot([0, 0], [0, 0], [0, g.interference], color="k", lw=1.0, ls="--")
+        ax3.text(0, 0, g.interference, rf"  summit $\xi_1$; $\omega$ = {g.interference:g} {u}", fontsize=8)
+        ax3.set_xlabel(axis_label("x", length_unit), fontsize=8)
+        ax3.set_ylabel(axis_label("y", length_unit), fontsize=8)
+        ax3.set_zlabel(axis_label("z − h", length_unit), fontsize=8)
+        ax3.set_title("(a) the asperity above the plane z = h", fontsize=9)
+        ax3.view_init(elev=28, azim=-60)
+        ax = fig.add_subplot(1, 2, 2)
+        _ellipse(ax, g.a, g.b, color=color(1), lw=1.5, ls="--",
+                 label=f"geometric ellipse (20): a = {g.a:.3g} {u}, b = {g.b:.3g} {u}")
+        t = np.linspace(0.0, 2.0 * np.pi, 241)
+        ax.fill(g.A * np.cos(t), g.B * np.sin(t), color="0.8", zorder=0)
+        _ellipse(ax, g.A, g.B, color="k", lw=1.5,
+                 label=f"contact ellipse (26)–(27): A = {g.A:.3g} {u}, B = {g.B:.3g} {u}")
+        ax.annotate("", (g.A, 0.0), (0.0, 0.0), arrowprops=dict(arrowstyle="->", lw=0.8))
+        ax.annotate("", (0.0, g.B), (0.0, 0.0), arrowprops=dict(arrowstyle="->", lw=0.8))
+        ax.text(0.5 * g.A, 0.0, "A", va="bottom", ha="center", fontsize=9)
+        ax.text(0.0, 0.5 * g.B, " B", va="center", ha="left", fontsize=9)
+        ax.set_aspect("equal")
+        ax.set_xlim(-1.15 * max(g.a, g.b), 1.15 * max(g.a, g.b))
+        ax.set_xlabel(axis_label("x", length_unit))
+        ax.set_ylabel(axis_label("y", length_unit))
+        ax.set_title(rf"(b) plan view: $\lambda$ = b/a = {min(g.a, g.b) / max(g.a, g.b):.3f}, "
+                     rf"$e_1$ = B/A = {g.e1:.3f}", fontsize=9)
+        legend_outside(fig, ax, where="bottom", ncol=1, fontsize=8)
     return fig

@@ -26,7 +26,7 @@ import numpy as np
 
 __all__ = [
     "STYLE", "COLORS", "style", "new_figure", "save", "color", "ordered_colors", "pretty_unit",
-    "per_length", "axis_label", "parameter_label", "legend_outside", "note",
+    "axis_label", "parameter_label", "legend_outside", "note",
 ]
 
 #: rcParams of every figure of the project.
@@ -111,51 +111,31 @@ def ordered_colors(n: int) -> list:
     return [cmap(x) for x in np.linspace(0.0, 0.85, max(n, 2))][:n]
 
 
-def _factor(token: str) -> str:
-    """One UDUNITS factor (``mm^2``, ``mm2``, ``mm-2``, ``um``) typeset: µ, superscripts."""
-    m = re.fullmatch(r"([A-Za-z]+)(?:\^?\(?(-?\d+)\)?)?", token)
-    if not m:
-        return token
-    name, power = m.groups()
+def _factor(name: str, power: int) -> str:
+    """One unit factor typeset: µ for micro, the power as a superscript."""
     name = {"um": "µm", "micron": "µm", "ohm": "Ω", "deg": "°"}.get(name, name)
-    return name + (power.translate(_SUPERSCRIPT) if power and power != "1" else "")
+    return name + (str(power).translate(_SUPERSCRIPT) if power != 1 else "")
 
 
 def pretty_unit(units: str) -> str:
     """A UDUNITS string as typeset: ``"um"`` → ``"µm"``, ``"N/mm^2"`` → ``"N/mm²"``,
-    ``"N mm-2 um-1"`` → ``"N/(mm²·µm)"``, ``"um^2"`` → ``"µm²"``, ``"1"`` → ``"–"``.
-    Strings it does not recognise are returned with ``um`` → ``µm`` only."""
+    ``"N/mm^2/um"`` and ``"N mm-2 um-1"`` → ``"N/(mm²·µm)"``, ``"um^2"`` → ``"µm²"``,
+    ``"1"`` → ``"–"``. Factors are read left to right (UDUNITS: ``a/b/c`` = a/(b·c)); a
+    string it cannot read is returned with ``um`` → ``µm`` only."""
     u = str(units).strip()
     if u in ("1", ""):
         return "–"
-    if "/" in u:
-        num, _, den = u.partition("/")
-        num_f = [_factor(t) for t in num.replace("*", " ").replace(".", " ").split()]
-        den_f = [_factor(t) for t in den.strip("()").replace("*", " ").replace(".", " ").split()]
-    else:
-        num_f, den_f = [], []
-        for t in u.replace("*", " ").replace(".", " ").split():
-            m = re.fullmatch(r"([A-Za-z]+)\^?\(?(-\d+)\)?", t)
-            if m:
-                den_f.append(_factor(m.group(1) + ("" if m.group(2) == "-1" else m.group(2)[1:])))
-            else:
-                num_f.append(_factor(t))
-    top = "·".join(num_f) or "1"
-    if not den_f:
+    num, den = [], []
+    for op, token in re.findall(r"(/?)\s*([^\s*./]+)", u):
+        m = re.fullmatch(r"([A-Za-z]+)(?:\^?\(?(-?\d+)\)?)?", token)
+        if not m:
+            return re.sub(r"\bum\b", "µm", u)
+        power = int(m.group(2) or 1) * (-1 if op else 1)
+        (num if power > 0 else den).append(_factor(m.group(1), abs(power)))
+    top = "·".join(num) or "1"
+    if not den:
         return top
-    bottom = "·".join(den_f)
-    return f"{top}/({bottom})" if len(den_f) > 1 else f"{top}/{bottom}"
-
-
-def per_length(stress: str, length: str) -> str:
-    """The UDUNITS string of a stress per length (K/A0): ``("N/mm^2", "um")`` → ``"N mm-2 um-1"``."""
-    num, _, den = stress.partition("/")
-    parts = [num.strip()]
-    for t in den.strip("()").split():
-        m = re.fullmatch(r"([A-Za-z]+)(?:\^?(\d+))?", t)
-        parts.append(f"{m.group(1)}-{m.group(2) or 1}" if m else t)
-    parts.append(f"{length}-1")
-    return " ".join(p for p in parts if p)
+    return f"{top}/({'·'.join(den)})" if len(den) > 1 else f"{top}/{den[0]}"
 
 
 def axis_label(quantity: str, units: str | None = None) -> str:
