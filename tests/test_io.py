@@ -122,3 +122,15 @@ def test_log_to_captures_prints_logging_warnings_and_errors(tmp_path):
     assert "boom" in log.read_text() and "Traceback" in log.read_text()
     # handlers are removed afterwards
     assert all(getattr(h, "stream", None) is None or not h.stream.closed for h in logging.getLogger().handlers)
+
+
+def test_progress_reaches_the_console_and_the_log(tmp_path, capfd):
+    import logging
+
+    with io.log_to(tmp_path / "rule.log") as logger:
+        logger.info("detail only in the log")
+        logging.getLogger(io.PROGRESS).info("part 1/2 done")
+    err = capfd.readouterr().err
+    assert "rule: part 1/2 done" in err and "detail only in the log" not in err
+    text = (tmp_path / "rule.log").read_text()
+    assert "part 1/2 done" in text and "detail only in the log" in text

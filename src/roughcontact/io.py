@@ -50,7 +50,12 @@ __all__ = [
     "check_cf_metadata",
     "write_text",
     "log_to",
+    "PROGRESS",
 ]
+
+#: the logger of progress messages of long jobs: inside :func:`log_to` they go to the rule's
+#: log *and* to the console (the terminal that runs Snakemake), one line each
+PROGRESS = "roughcontact.progress"
 
 _LIBRARIES = ("numpy", "scipy", "mpmath", "numba", "xarray", "netCDF4")
 
@@ -294,7 +299,9 @@ def write_text(path: str | os.PathLike, text: str) -> Path:
 def log_to(path: str | os.PathLike | None, level: int = logging.INFO) -> Iterator[logging.Logger]:
     """Send ``print`` output, warnings and ``logging`` records to ``path`` for the duration
     (a Snakemake rule's ``log:``); exceptions are logged with their traceback and re-raised.
-    ``path=None`` logs to stderr."""
+    ``path=None`` logs to stderr. Records of the :data:`PROGRESS` logger also reach the
+    console (the process's original stderr), tagged with the log's name, so a long job shows
+    its progress where Snakemake runs, not only in ``logs/``."""
     logger = logging.getLogger("roughcontact.workflow")
     if path is None:
         handler: logging.Handler = logging.StreamHandler(sys.stderr)
@@ -308,6 +315,12 @@ def log_to(path: str | os.PathLike | None, level: int = logging.INFO) -> Iterato
     root = logging.getLogger()
     old_level = root.level
     root.addHandler(handler)
+    console = None
+    if stream is not None:
+        console = logging.StreamHandler(sys.__stderr__)
+        console.setFormatter(logging.Formatter(f"%(asctime)s {Path(path).stem}: %(message)s", "%H:%M:%S"))
+        console.addFilter(lambda record: record.name == PROGRESS)
+        root.addHandler(console)
     root.setLevel(level)
     logging.captureWarnings(True)
     redirect = contextlib.ExitStack()
@@ -324,6 +337,8 @@ def log_to(path: str | os.PathLike | None, level: int = logging.INFO) -> Iterato
     finally:
         logging.captureWarnings(False)
         root.removeHandler(handler)
+        if console is not None:
+            root.removeHandler(console)
         root.setLevel(old_level)
         handler.flush()
         if stream is not None:
