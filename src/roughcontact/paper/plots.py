@@ -254,6 +254,8 @@ def fig9(panels: Mapping[str, dict], *, units: str = "1"):
             ax.quiver(d["t_x"], d["t_y"], scale * d["up_x"] / up, scale * d["up_y"] / up, angles="xy",
                       scale_units="xy", scale=1.0, color=_COLORS[2], width=0.006, label="slip direction")
             ax.plot(d["t_x"], d["t_y"], "o", color=_COLORS[0], markersize=2.5)
+            if abs(a * d["ratio"] - b) <= 1e-12 * max(a, b):
+                note(ax, "g coincides with f\n(associated slip)", loc="lower right")
             lim = 1.35 * max(a, b)
             ax.set_xlim(-lim, lim)
             ax.set_ylim(-lim, lim)

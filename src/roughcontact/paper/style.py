@@ -156,9 +156,13 @@ def parameter_label(name: str, value, units: str | None = None, *, fmt: str = "g
 
 def legend_outside(fig, ax=None, *, where: str = "right", **kwargs):
     """The legend outside the data: beside the axes (``where="right"``) or below the figure
-    (``"bottom"``); the constrained layout makes room for it."""
-    handles_from = ax if ax is not None else fig.axes[0]
-    handles, labels = handles_from.get_legend_handles_labels()
+    (``"bottom"``); the constrained layout makes room for it. Entries come from ``ax``, or
+    from every axes of the figure (each label once) when ``ax`` is None."""
+    entries: dict = {}
+    for a in ([ax] if ax is not None else fig.axes):
+        for handle, label in zip(*a.get_legend_handles_labels()):
+            entries.setdefault(label, handle)
+    labels, handles = list(entries), list(entries.values())
     if where == "right":
         kwargs.setdefault("loc", "outside right upper")
     else:
