@@ -81,7 +81,7 @@ def elastoplastic_psi(scene, cfg, ds):
     else:
         ratio = claims.mean_pressure_over_H(ds)
         K_Y, tabor, c_h = 1.62, 0.354, 0.967  # captions; (68); (66)
-        levels = {"0.354 (prose)": tabor, "(2/3) K Y/H = 0.382": 2 / 3 * K_Y * tabor, "c_h = 0.967": c_h}
+        levels = {"0.354 (the prose)": tabor, "$(2/3)\\,K_Y Y/H$ = 0.382": 2 / 3 * K_Y * tabor, "$c_h$ = 0.967": c_h}
         fig = plots.fig6(load, dict(zip(labels, ratio)), levels)
         ds = ds.assign(W_over_AH=(("psi", "s"), ratio, {"units": "1"}))
         table = _long_csv(ds, ["load_W_over_HA0", "W_over_AH", "area_fraction", "pressure"])

@@ -7,6 +7,8 @@ from __future__ import annotations
 import html
 from typing import Any, Mapping, Sequence
 
+from .style import pretty_unit
+
 __all__ = ["verdict_of", "geometry_verdict", "render"]
 
 _STYLE = """
@@ -35,7 +37,7 @@ def verdict_of(rows: Sequence[Mapping[str, str]]) -> tuple[str, str]:
 
 def geometry_verdict(name: str, numbers: Mapping[str, Any]) -> tuple[str, str]:
     """The numbers behind Figs 1 and 2, as a verdict line."""
-    u = numbers.get("units", {}).get("length", "")
+    u = pretty_unit(numbers.get("units", {}).get("length", "1"))
     if name == "fig1":
         d, m = numbers["delta_73"], numbers["map_summit_mean"]
         return "none", (f"drawn from the library; the generated map's summits lie {m:.4g} {u} above its mean plane on "
@@ -74,11 +76,13 @@ def render(entries: Mapping[str, Mapping[str, Any]], checks: Mapping[str, Sequen
         out.append(f"<p class='verdict {css}'>Verdict: {e(text)}</p>")
         rows = checks.get(name, [])
         if rows:
-            out.append("<table><tr><th>the paper's claim</th><th>verdict</th><th>the numbers</th></tr>")
+            out.append("<table><tr><th>the paper's claim</th><th>verdict</th><th>expected (config/expected_verdicts.yaml)"
+                       "</th><th>the numbers</th></tr>")
             for r in rows:
                 cls = "reproduced" if r["verdict"] == "reproduced" else "not"
+                expected = f"{r.get('expected', '')} ({r.get('status', '')})" if r.get("expected") else ""
                 out.append(f"<tr><td>{e(r['description'])}</td><td class='{cls}'>{e(r['verdict'])}</td>"
-                           f"<td>{e(r['detail'])}</td></tr>")
+                           f"<td>{e(expected)}</td><td>{e(r['detail'])}</td></tr>")
             out.append("</table>")
         out.append("</section>")
     out.append("</body></html>")

@@ -141,8 +141,9 @@ def fig6(load: Mapping[str, Sequence[float]], mean_pressure: Mapping[str, Sequen
             ax.axhline(value, color="0.35", linewidth=0.8, linestyle=(0, (1 + 2 * j, 2)))
             # label above its line, unless the next level up is close: then below
             close = any(0 < v - value < 0.06 for v in values)
-            ax.annotate(name, (1.0, value), xycoords=("axes fraction", "data"), xytext=(-4, -2 if close else 2),
-                        textcoords="offset points", ha="right", va="top" if close else "bottom",
+            # on the left, where the curves have not begun (they start at the first contact)
+            ax.annotate(name, (0.0, value), xycoords=("axes fraction", "data"), xytext=(4, -2 if close else 2),
+                        textcoords="offset points", ha="left", va="top" if close else "bottom",
                         fontsize=8, color="0.3")
         ax.set_xscale("log")
         ax.set_ylim(0.0, 1.05)
@@ -222,13 +223,17 @@ def stiffness_sensitivity(variants: Mapping[str, tuple], by_psi: Mapping[str, tu
     with style():
         fig = new_figure(figsize=(11.0, 4.4))
         axes = fig.subplots(1, 2)
-        for k, (title, curves) in enumerate((("(a) moments varied, m00 kept (and m00 doubled)", variants),
+        for k, (title, curves) in enumerate(((r"(a) moments varied, $m_{00}$ kept (and $m_{00}$ doubled)", variants),
                                              (r"(b) plasticity index $\psi$", by_psi))):
             ax = axes[k]
             colors = ordered_colors(len(curves)) if k else [color(i) for i in range(len(curves))]
             for i, (label, (p, s)) in enumerate(curves.items()):
                 ax.plot(*_within(p, s, xlim), color=colors[i], linestyle=("-", "--")[k == 0 and i >= len(_COLORS)],
                         label=label)
+            if k:  # the ψ curves lie on one another: say how close
+                (first, (p0, s0)), *rest = curves.items()
+                gap = max(largest_gap(p0, s0, p, s, xlim) for _, (p, s) in rest)
+                note(ax, f"all within {100 * gap:.2g} % of {first}\nat equal pressure")
             _stiffness_axes(ax, title, xlim, units, "elasto-plastic stiffness")
             ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8)
     return fig
