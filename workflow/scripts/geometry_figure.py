@@ -23,16 +23,7 @@ def fig1(cfg, moments, L):
     grid = cfg["grid"]
     p = geometry.fig1_profile(moments, n=int(grid["n"]), dx=float(grid["dx"]), seed=int(cfg["seed"]),
                               profile_length=float(cfg["profile_length"]), separation=float(cfg["separation"]))
-    # the map patch of panel (a): the profile's rows, a square around the profile's column
-    from roughcontact.statistics.synthetic import synthetic_surface
-
-    n, dx = int(grid["n"]), float(grid["dx"])
-    z = synthetic_surface(moments, (n, n), dx, seed=int(cfg["seed"]))
-    rows = p.y.size
-    half = rows // 2
-    patch = z[:rows, n // 2 - half:n // 2 + half + 1]
-    extent = ((n // 2 - half) * dx, (n // 2 + half) * dx, 0.0, (rows - 1) * dx)
-    fig = plots.fig1(p, patch, extent, length_unit=L)
+    fig = plots.fig1(p, length_unit=L)
     numbers = {"delta_73": p.delta, "map_summit_mean": p.map_summit_mean, "map_summit_density": p.map_summit_density,
                "model_summit_density": p.model_summit_density, "map_m00": p.map_m00, "grid_m00": p.grid_m00,
                "m00": moments.m00, "flat": p.flat, "units": {"length": L}}

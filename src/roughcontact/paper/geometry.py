@@ -45,6 +45,8 @@ class SurfaceProfile:
     grid_m00: float               # its expectation on the grid (statistics.synthetic.grid_moments)
     flat: float                   # height h = s √m00 of the smooth flat drawn [L]
     sigma_s: float                # summit-height standard deviation, eqs. (71)-(72) [L]
+    patch: np.ndarray             # the map around the profile: its rows, as many columns [L]
+    patch_extent: tuple           # (x0, x1, y0, y1) of the patch [L]
 
 
 def summits(z: np.ndarray) -> np.ndarray:
@@ -72,6 +74,8 @@ def fig1_profile(moments: SpectralMoments, *, n: int, dx: float, seed: int, prof
     rows = int(round(profile_length / dx)) + 1
     y = np.arange(rows) * dx
     near_i, near_j = np.nonzero(peaks[:rows, column - band_points:column + band_points + 1])
+    half = min(rows // 2, column)
+    patch = z[:rows, column - half:column + half + 1]
     return SurfaceProfile(
         y=y, z=z[:rows, column], summit_y=near_i * dx, summit_z=z[near_i, near_j + column - band_points],
         band=band_points * dx, map_summits=int(peaks.sum()),
@@ -79,6 +83,7 @@ def fig1_profile(moments: SpectralMoments, *, n: int, dx: float, seed: int, prof
         map_summit_density=float(peaks.sum() / (n * dx) ** 2), model_summit_density=moments.summit_density,
         map_m00=float(z.var()), grid_m00=grid_moments(moments, (n, n), dx)["m00"],
         flat=separation * math.sqrt(moments.m00), sigma_s=moments.summit_height_std,
+        patch=patch, patch_extent=((column - half) * dx, (column + half) * dx, 0.0, (rows - 1) * dx),
     )
 
 

@@ -382,12 +382,13 @@ def punch_slips(panels: Mapping[str, Mapping[str, dict]], *, title: str):
     return fig
 
 
-def fig1(profile, image, extent, *, length_unit: str = "um"):
-    """Fig. 1: (a) a patch of the generated height map (``image`` [L] over ``extent`` = (x0, x1,
-    y0, y1)) with the profile's line; (b) the profile across the lay with the surface's mean
-    plane, the mean plane of the summits at δ (73), the mean height of the map's summits and
-    the smooth flat at h (``profile``: :class:`roughcontact.paper.geometry.SurfaceProfile`)."""
+def fig1(profile, *, length_unit: str = "um"):
+    """Fig. 1: (a) a patch of the generated height map with the profile's line; (b) the profile
+    across the lay with the surface's mean plane, the mean plane of the summits at δ (73), the
+    mean height of the map's summits and the smooth flat at h (``profile``:
+    :class:`roughcontact.paper.geometry.SurfaceProfile`)."""
     p = profile
+    image, extent = p.patch, p.patch_extent
     with style():
         fig = new_figure(figsize=(10.0, 4.4))
         ax_map, ax = fig.subplots(1, 2, width_ratios=(1.0, 2.2))
