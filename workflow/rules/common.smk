@@ -59,7 +59,9 @@ PHYSICS_SOURCES = library_sources(
 #: stamp of the numba_warmup job: the rules that call the numba kernels take it as input, so
 #: that a cold cache is compiled once, not once per parallel job (docs/performance.md).
 KERNELS_WARM = "results/numba/warm.stamp"
-REPORT_SOURCES = library_sources("paper/claims.py", "paper/verify.py", "paper/report.py", "paper/plots.py", "io.py")
+REPORT_SOURCES = library_sources(
+    "paper/claims.py", "paper/verify.py", "paper/report.py", "paper/plots.py", "paper/style.py", "io.py"
+)
 
 
 def scene_targets():

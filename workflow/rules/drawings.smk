@@ -17,6 +17,7 @@ DRAWING_SOURCES = [
     "src/roughcontact/fe/quadrature.py",
     "src/roughcontact/paper/drawings.py",
     "src/roughcontact/paper/plots.py",
+    "src/roughcontact/paper/style.py",
 ]
 
 

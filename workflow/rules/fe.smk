@@ -93,7 +93,7 @@ rule fe_beam_study:
 rule fe_fig10:
     """Fig. 10: the beam model (quarter mesh, supports, load), drawn from the engine's mesh."""
     input:
-        code=library_sources("fe", "paper/drawings.py", "paper/plots.py"),
+        code=library_sources("fe", "paper/drawings.py", "paper/plots.py", "paper/style.py"),
     output:
         png="paper_figures/fig10.png",
         pdf="paper_figures/fig10.pdf",  # vector, beside the PNG (paper.style.save)
@@ -241,7 +241,7 @@ rule fe_punch_slips:
 rule fe_punch_mesh_figure:
     """Figs 14 (21-node) and 15 (28-node): the quarter punch on the foundation, from the engine's mesh."""
     input:
-        code=library_sources("fe", "paper/drawings.py", "paper/plots.py"),
+        code=library_sources("fe", "paper/drawings.py", "paper/plots.py", "paper/style.py"),
     output:
         png="paper_figures/{fig}.png",
         pdf="paper_figures/{fig}.pdf",  # vector, beside the PNG (paper.style.save)
