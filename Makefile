@@ -5,7 +5,8 @@
 #
 # Other targets: test-slow (the slow tier: mpmath references, workflow runs; CI runs it), test-all,
 # bench (speed against error, full mode), bench-fe (FE linear solvers), verify (verification report and verdict gate only),
-# dry-run, ci (.ci/run), clean (generated results), distclean (+ .venv).
+# docs (API reference, Sphinx, warnings are errors), dry-run, ci (.ci/run), clean (generated results),
+# distclean (+ .venv).
 
 SHELL := /bin/bash
 .DEFAULT_GOAL := help
@@ -23,10 +24,10 @@ SNAKEMAKE := $(BIN)/snakemake --workflow-profile workflow/profiles/default --cor
 # need no re-install).
 STAMP  := $(VENV)/.installed
 
-.PHONY: help venv reproduce bench bench-fe test test-slow test-all verify dry-run ci clean distclean
+.PHONY: help venv reproduce bench bench-fe test test-slow test-all verify docs dry-run ci clean distclean
 
 help:
-	@sed -n '3,8p' Makefile
+	@sed -n '3,9p' Makefile
 
 $(PY):
 	@test -n "$(PYTHON)" || { echo "error: python3.11 (or python3 >= 3.11) not found" >&2; exit 1; }
@@ -34,7 +35,7 @@ $(PY):
 	$(PYTHON) -m venv $(VENV)
 
 $(STAMP): pyproject.toml | $(PY)
-	$(PY) -m pip install --quiet --editable '.[test,cluster]'
+	$(PY) -m pip install --quiet --editable '.[workflow,test,docs,cluster]'
 	@touch $@
 
 venv: $(STAMP)
@@ -67,6 +68,10 @@ test-all: $(STAMP)
 verify: $(STAMP)
 	$(SNAKEMAKE) verify
 
+# the API reference from the docstrings (docs/_build/html; -W: a warning fails the build)
+docs: $(STAMP)
+	$(BIN)/sphinx-build -q -W --keep-going -b html docs docs/_build/html
+
 dry-run: $(STAMP)
 	$(BIN)/snakemake -n all
 
@@ -74,7 +79,7 @@ ci:
 	bash .ci/run
 
 clean:
-	rm -rf results paper_figures logs .snakemake
+	rm -rf results paper_figures logs .snakemake docs/_build
 
 distclean: clean
 	rm -rf $(VENV) src/*.egg-info

@@ -3,7 +3,7 @@
 #
 #   snakemake -n all                        plan everything (works on a fresh clone)
 #   snakemake --cores 2 all                 tables, figures, sweeps, VERIFICATION.md, verdict gate
-#   snakemake --cores 2 table1 | ... | fig18_point | sweeps | speed_vs_error | verify
+#   snakemake --cores 2 table1 | ... | fig18_point | sweeps | speed_vs_error | verify | gallery
 #
 # `make reproduce` / `make verify` add the default profile (workflow/profiles/default:
 # rerun-incomplete, so a killed run resumes); CI uses workflow/profiles/ci (lower reference
@@ -33,6 +33,7 @@ rule all:
         drawing_targets(),
         [f"results/sweeps/{name}.nc" for name in SWEEPS],
         "paper_figures/VERIFICATION.md",
+        "paper_figures/index.html",
         "results/verify/passed",
 
 
@@ -45,3 +46,4 @@ include: "workflow/rules/fe.smk"
 include: "workflow/rules/calculix.smk"
 include: "workflow/rules/drawings.smk"
 include: "workflow/rules/verify.smk"
+include: "workflow/rules/gallery.smk"

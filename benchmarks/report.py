@@ -145,7 +145,7 @@ def write_netcdf(results: dict, path: Path) -> None:
             "relative_error": (("row", "quantity"), err, {"units": "1", "long_name": "|value/reference - 1|"}),
         },
         coords={"quantity": ("quantity", list(QUANTITIES), {"units": "1", "long_name": "A/A0, W/A0, K/A0"}),
-                "row": ("row", np.arange(len(rows)), {"units": "1"})},
+                "row": ("row", np.arange(len(rows)), {"units": "1", "long_name": "benchmark setting (row of the table)"})},
     )
     ds.attrs["machine"] = json.dumps(results["machine_before"])
     _write(ds, path, settings={"benchmark": "speed_vs_error", "mode": results["mode"], "repeat": results["repeat"]})
@@ -154,7 +154,7 @@ def write_netcdf(results: dict, path: Path) -> None:
 def figure(results: dict, path) -> None:
     """Error (log) against time per separation (log), one curve per method family, per
     quantity; each marker one setting: median time over the points, worst error over them."""
-    from roughcontact.paper.plots import new_figure, save
+    from roughcontact.paper.style import legend_outside, new_figure, save, style
 
     styles = {
         "production": dict(color="#1b4f72", marker="o", ls="-"),
@@ -165,28 +165,28 @@ def figure(results: dict, path) -> None:
         "mpmath": dict(color="#7d3c98", marker="v", ls="-"),
     }
     settings = results["summary"]["settings"]
-    fig = new_figure(figsize=(11.0, 6.6))
-    axes = fig.subplots(2, 3, sharex="row")
-    for i, (model, (err_goal, t_goal)) in enumerate(GOALS.items()):
-        for q in range(3):
-            ax = axes[i, q]
-            for family, st in styles.items():
-                pts = [(s["seconds_median"], s["worst_errors"][q]) for s in settings
-                       if s["model"] == model and s["family"] == family and s["seconds_median"] is not None
-                       and s["worst_errors"][q] is not None]
-                if not pts:
-                    continue
-                pts.sort()
-                t, e = zip(*pts)
-                ax.loglog(t, np.maximum(e, FLOOR), label=family, **st)
-            ax.axhline(err_goal, color="0.5", lw=0.8, ls=":")
-            ax.axvline(t_goal, color="0.5", lw=0.8, ls=":")
-            ax.set_title(f"{model}: {QUANTITIES[q]}")
-            ax.set_xlabel("time per separation [s]")
-            if q == 0:
-                ax.set_ylabel("relative error (worst over points)")
-    axes[0, 0].legend(loc="lower left", fontsize=7)
-    fig.tight_layout()
+    with style():  # the project's figure style (roughcontact.paper.style)
+        fig = new_figure(figsize=(11.0, 6.6))
+        axes = fig.subplots(2, 3, sharex="row")
+        for i, (model, (err_goal, t_goal)) in enumerate(GOALS.items()):
+            for q in range(3):
+                ax = axes[i, q]
+                for family, st in styles.items():
+                    pts = [(s["seconds_median"], s["worst_errors"][q]) for s in settings
+                           if s["model"] == model and s["family"] == family and s["seconds_median"] is not None
+                           and s["worst_errors"][q] is not None]
+                    if not pts:
+                        continue
+                    pts.sort()
+                    t, e = zip(*pts)
+                    ax.loglog(t, np.maximum(e, FLOOR), label=family, **st)
+                ax.axhline(err_goal, color="0.5", lw=0.8, ls=":")
+                ax.axvline(t_goal, color="0.5", lw=0.8, ls=":")
+                ax.set_title(f"{model}: {QUANTITIES[q]}")
+                ax.set_xlabel("time per separation [s]")
+                if q == 0:
+                    ax.set_ylabel("relative error (worst over points)")
+        legend_outside(fig, where="bottom", ncol=6, fontsize=8)  # off the data; every method once
     save(fig, path)
 
 

@@ -16,7 +16,7 @@ def _dataset():
     s = np.linspace(1.0, 3.5, 6)
     return xr.Dataset(
         {"pressure": ("s", 100.0 * np.exp(-s), {"units": "N/mm^2"})},
-        coords={"s": ("s", s, {"units": "1"})},
+        coords={"s": ("s", s, {"units": "1", "long_name": "separation"})},
         attrs={"model": "gw", "hertz": None, "flag": True, "surface": {"m00": 0.0625}},
     )
 
@@ -55,6 +55,22 @@ def test_every_variable_needs_units(tmp_path):
     with pytest.raises(ValueError, match="area"):
         io.write_netcdf(ds, tmp_path / "x.nc")
     assert not (tmp_path / "x.nc").exists()
+
+
+def test_cf_metadata_global_attributes_and_string_units(tmp_path):
+    ds = _dataset().assign_coords(label=("s", [f"p{i}" for i in range(6)], {"units": "1", "long_name": "point"}))
+    out = io.read_netcdf(io.write_netcdf(ds, tmp_path / "x.nc"))
+    assert "units" not in out["label"].attrs  # CF: no units on strings
+    assert out.attrs["Conventions"] == "CF-1.8" and "doi:10.1007/s11831-009-9037-2" in out.attrs["references"]
+    assert out.attrs["title"] and out.attrs["history"].startswith(out.attrs["created_utc"])
+    assert io.check_cf_metadata(out) == []
+
+
+def test_coordinates_need_long_name(tmp_path):
+    ds = _dataset()
+    del ds["s"].attrs["long_name"]
+    with pytest.raises(ValueError, match="s: a coordinate without long_name"):
+        io.write_netcdf(ds, tmp_path / "x.nc")
 
 
 def test_config_hash_is_canonical():
@@ -106,3 +122,15 @@ def test_log_to_captures_prints_logging_warnings_and_errors(tmp_path):
     assert "boom" in log.read_text() and "Traceback" in log.read_text()
     # handlers are removed afterwards
     assert all(getattr(h, "stream", None) is None or not h.stream.closed for h in logging.getLogger().handlers)
+
+
+def test_progress_reaches_the_console_and_the_log(tmp_path, capfd):
+    import logging
+
+    with io.log_to(tmp_path / "rule.log") as logger:
+        logger.info("detail only in the log")
+        logging.getLogger(io.PROGRESS).info("part 1/2 done")
+    err = capfd.readouterr().err
+    assert "rule: part 1/2 done" in err and "detail only in the log" not in err
+    text = (tmp_path / "rule.log").read_text()
+    assert "part 1/2 done" in text and "detail only in the log" in text

@@ -7,7 +7,14 @@ Every netCDF file the workflow writes carries in its global attributes
   before the first commit) and ``git_dirty`` (``"true"``/``"false"``/``"unknown"``),
 * ``config_json`` / ``config_sha256`` — the configuration that produced it (canonical JSON),
 * ``settings_json`` — the creation settings (method, accuracy preset, dps, ...),
-* library versions (python, numpy, scipy, mpmath, numba, xarray) and ``created_utc``.
+* library versions (python, numpy, scipy, mpmath, numba, xarray) and ``created_utc``,
+* the CF global attributes ``title`` (the dataset's own, else one naming the paper),
+  ``history``, ``references`` (the paper and its DOI), ``institution``-free ``source`` and
+  ``Conventions = "CF-1.8"``.
+
+Variables follow CF (checked by tests/test_cf.py on every file the workflow writes): numeric
+variables and coordinates carry UDUNITS ``units`` ("1" for pure numbers), meanings go in
+``long_name``, every coordinate has a ``long_name``, string variables carry no ``units``.
 
 The data are deterministic; only ``created_utc`` (and the commit) change between two runs
 of the same configuration. Files are written to a temporary name and renamed into place, so
@@ -40,12 +47,24 @@ __all__ = [
     "write_netcdf",
     "read_netcdf",
     "read_provenance",
+    "REFERENCES",
+    "check_cf_metadata",
     "write_text",
     "atomic_path",
     "log_to",
+    "PROGRESS",
 ]
 
+#: the logger of progress messages of long jobs: inside :func:`log_to` they go to the rule's
+#: log *and* to the console (the terminal that runs Snakemake), one line each
+PROGRESS = "roughcontact.progress"
+
 _LIBRARIES = ("numpy", "scipy", "mpmath", "numba", "xarray", "netCDF4")
+
+#: the CF ``references`` attribute of every file: the paper reproduced
+REFERENCES = ("R. Buczkowski, M. Kleiber (2009), Statistical Models of Rough Surfaces for Finite Element "
+              "3D-Contact Analysis, Arch. Comput. Methods Eng. 16:399-424, doi:10.1007/s11831-009-9037-2")
+_TITLE = "roughcontact: statistical contact of anisotropic rough surfaces (Buczkowski & Kleiber 2009)"
 
 
 def _git(args: list[str], cwd: str | os.PathLike | None) -> str | None:
@@ -149,11 +168,36 @@ def provenance_attrs(
         "settings_json": canonical_json(settings if settings is not None else {}),
         "software_versions": canonical_json(_library_versions()),
         "source": "roughcontact (Buczkowski & Kleiber 2009 reproduction)",
+        "references": REFERENCES,
         "Conventions": "CF-1.8",
+        "history": f"written by roughcontact {__version__} (roughcontact.io.write_netcdf)",
     }
     if timestamp:
         attrs["created_utc"] = _dt.datetime.now(_dt.timezone.utc).replace(microsecond=0).isoformat()
+        attrs["history"] = f"{attrs['created_utc']} {attrs['history']}"
     return attrs
+
+
+def _is_text(var) -> bool:
+    return var.dtype.kind in "USO"
+
+
+def check_cf_metadata(ds) -> list[str]:
+    """What keeps ``ds`` from the CF metadata this project writes (empty if nothing): a numeric
+    variable or coordinate without ``units``, a coordinate without ``long_name``, a string
+    variable with ``units``. (Whether a units string is valid UDUNITS is checked by the tests
+    with cf-units, which the library does not depend on.)"""
+    problems = []
+    for name in list(ds.data_vars) + list(ds.coords):
+        var = ds[name]
+        if _is_text(var):
+            if "units" in var.attrs:
+                problems.append(f"{name}: a string variable has units")
+        elif "units" not in var.attrs:
+            problems.append(f"{name}: no units")
+        if name in ds.coords and "long_name" not in var.attrs:
+            problems.append(f"{name}: a coordinate without long_name")
+    return problems
 
 
 def _netcdf_attr(value: Any):
@@ -177,17 +221,23 @@ def write_netcdf(
 ) -> Path:
     """Write an ``xarray.Dataset`` to ``path`` (netCDF4) with provenance attributes.
 
-    Existing dataset attributes are kept (provenance keys win); attribute values that netCDF
-    cannot hold (dicts, lists, booleans, None) are stored as JSON/text. Variables without a
-    ``units`` attribute are refused: every stored quantity must say its unit.
+    Existing dataset attributes are kept (provenance keys win; the dataset's ``title`` is
+    kept, else a generic one is set); attribute values that netCDF cannot hold (dicts, lists,
+    booleans, None) are stored as JSON/text. String variables lose a ``units`` attribute (CF:
+    strings have none). A numeric variable without ``units`` or a coordinate without
+    ``long_name`` is refused (ValueError naming them): every stored quantity says its unit.
     """
     path = Path(path)
-    missing = [name for name in list(ds.data_vars) + list(ds.coords) if "units" not in ds[name].attrs]
-    if missing:
-        raise ValueError(f"variables without a 'units' attribute: {', '.join(map(str, missing))}")
     out = ds.copy()
+    for name in list(out.data_vars) + list(out.coords):
+        if _is_text(out[name]):
+            out[name].attrs.pop("units", None)
+    problems = check_cf_metadata(out)
+    if problems:
+        raise ValueError("not CF metadata: " + "; ".join(problems))
     attrs = {k: _netcdf_attr(v) for k, v in ds.attrs.items()}
     attrs.update(provenance_attrs(config, settings, timestamp=timestamp))
+    attrs.setdefault("title", _TITLE)
     out.attrs = attrs
     for name in list(out.data_vars) + list(out.coords):
         out[name].attrs = {k: _netcdf_attr(v) for k, v in out[name].attrs.items()}
@@ -234,7 +284,9 @@ def write_text(path: str | os.PathLike, text: str) -> Path:
 def log_to(path: str | os.PathLike | None, level: int = logging.INFO) -> Iterator[logging.Logger]:
     """Send ``print`` output, warnings and ``logging`` records to ``path`` for the duration
     (a Snakemake rule's ``log:``); exceptions are logged with their traceback and re-raised.
-    ``path=None`` logs to stderr."""
+    ``path=None`` logs to stderr. Records of the :data:`PROGRESS` logger also reach the
+    console (the process's original stderr), tagged with the log's name, so a long job shows
+    its progress where Snakemake runs, not only in ``logs/``."""
     logger = logging.getLogger("roughcontact.workflow")
     if path is None:
         handler: logging.Handler = logging.StreamHandler(sys.stderr)
@@ -248,6 +300,12 @@ def log_to(path: str | os.PathLike | None, level: int = logging.INFO) -> Iterato
     root = logging.getLogger()
     old_level = root.level
     root.addHandler(handler)
+    console = None
+    if stream is not None:
+        console = logging.StreamHandler(sys.__stderr__)
+        console.setFormatter(logging.Formatter(f"%(asctime)s {Path(path).stem}: %(message)s", "%H:%M:%S"))
+        console.addFilter(lambda record: record.name == PROGRESS)
+        root.addHandler(console)
     root.setLevel(level)
     logging.captureWarnings(True)
     redirect = contextlib.ExitStack()
@@ -264,6 +322,8 @@ def log_to(path: str | os.PathLike | None, level: int = logging.INFO) -> Iterato
     finally:
         logging.captureWarnings(False)
         root.removeHandler(handler)
+        if console is not None:
+            root.removeHandler(console)
         root.setLevel(old_level)
         handler.flush()
         if stream is not None:

@@ -216,7 +216,16 @@ def test_bad_input_raises_clear_errors(kwargs, fragment):
 
 
 def test_dataset_carries_units():
-    ds = elastic_contact(TABLE1, [1.0, 2.0], E_STAR).to_dataset()
+    curves = elastic_contact(TABLE1, [1.0, 2.0], E_STAR)
+    ds = curves.to_dataset(units={"length": "um", "stress": "N/mm^2"})
     assert set(ds.data_vars) == {"area_fraction", "pressure", "stiffness"}
-    assert all("units" in ds[v].attrs for v in ds.data_vars)
+    assert ds["pressure"].attrs["units"] == "N/mm^2" and ds["stiffness"].attrs["units"] == "N/mm^2/um"
+    assert ds["area_fraction"].attrs["units"] == ds["s"].attrs["units"] == "1"
+    assert all("eq." in ds[v].attrs["long_name"] for v in [*ds.data_vars, "s"])
     assert ds.attrs["model"] == "bgk" and ds.attrs["m00"] == 0.0625
+    # no unit system stated: the dimensional variables claim no unit, the long name says which
+    bare = curves.to_dataset()
+    assert "units" not in bare["pressure"].attrs and "unit of E*" in bare["pressure"].attrs["long_name"]
+    assert bare["area_fraction"].attrs["units"] == "1"
+    with pytest.raises(ValueError, match="missing: stress"):
+        curves.to_dataset(units={"length": "um"})

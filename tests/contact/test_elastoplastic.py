@@ -325,8 +325,9 @@ def test_dataset_carries_units_material_and_psi():
     mat = material(0.35)
     c = elastoplastic_contact(FIG, [1.0, 2.0], mat)
     assert c.psi == pytest.approx(0.35, rel=1e-14)
-    ds = c.to_dataset()
+    ds = c.to_dataset(units={"length": "um", "stress": "N/mm^2"})
     assert set(ds.data_vars) == set(ElastoPlasticCurves.FIELDS)
-    assert all("units" in ds[v].attrs for v in ds.data_vars)
+    assert all("units" in ds[v].attrs and "long_name" in ds[v].attrs for v in ds.data_vars)
+    assert ds["plastic_pressure"].attrs["units"] == "N/mm^2" and ds["stiffness_jump"].attrs["units"] == "N/mm^2/um"
     assert ds.attrs["psi"] == pytest.approx(0.35) and ds.attrs["m00"] == 0.0625
     assert ds.attrs["K_v"] == pytest.approx(0.354 * 1.62) and ds.attrs["Y"] == mat.Y

@@ -50,7 +50,7 @@ def test_labels_units_progress(swept):
     assert ds["pressure"].dims == ("m00", "psi", "s")
     assert ds["pressure"].attrs["units"] == "N/mm^2" and ds["stiffness"].attrs["units"] == "N/mm^2/um"
     assert ds["m00"].attrs["units"] == "um^2" and ds["psi"].attrs["units"] == "1"
-    assert all("units" in ds[v].attrs for v in [*ds.data_vars, *ds.coords])
+    assert all("units" in ds[v].attrs and "long_name" in ds[v].attrs for v in [*ds.data_vars, *ds.coords])
     assert ds.attrs["closure"] == "yield-from-psi"
     assert calls == [(i, 4) for i in range(1, 5)]
     # parts sum to totals

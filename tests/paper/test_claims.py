@@ -278,9 +278,10 @@ def test_elastoplastic_numerics_checks():
     cols = ["elastic_area_fraction", "elastoplastic_area_fraction", "plastic_area_fraction",
             "elastic_pressure", "elastoplastic_pressure", "plastic_pressure", "stiffness"]
     ref = np.array([[0.1, 0.02, 0.0, 10.0, 3.0, 0.0, 50.0]])
-    ds = xr.Dataset({"production": (("point", "column"), ref * (1 + np.array([[1e-9, 0, 0, 0, 0, 0, 2e-8]]))),
-                     "reference": (("point", "column"), ref)},
-                    coords={"point": ["p1"], "column": cols}, attrs={"reference_rtol": 1e-10})
+    prod = ref * (1 + np.array([[1e-9, 0, 0, 0, 0, 0, 2e-8]]))
+    ds = xr.Dataset({**{f"production_{c}": ("point", prod[:, j]) for j, c in enumerate(cols)},
+                     **{f"reference_{c}": ("point", ref[:, j]) for j, c in enumerate(cols)}},
+                    coords={"point": ["p1"]}, attrs={"reference_rtol": 1e-10, "columns": " ".join(cols)})
     checks = claims.elastoplastic_numerics_checks("ep", ds, 1e-8, "why")
     assert [c.quantity for c in checks] == ["area_fraction", "pressure", "stiffness"]
     assert [c.verdict for c in checks] == ["reproduced", "reproduced", "not reproduced"]

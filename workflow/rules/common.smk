@@ -97,8 +97,10 @@ PHYSICS_SOURCES = library_sources(
 #: stamp of the numba_warmup job: the rules that call the numba kernels take it as input, so
 #: that a cold cache is compiled once, not once per parallel job (docs/performance.md).
 KERNELS_WARM = "results/numba/warm.stamp"
-REPORT_SOURCES = library_sources("paper/claims.py", "paper/verify.py", "paper/report.py", "paper/plots.py", "io.py",
-                                 "files.py")
+REPORT_SOURCES = library_sources(
+    "paper/claims.py", "paper/verify.py", "paper/report.py", "paper/plots.py", "paper/style.py", "io.py",
+    "files.py",
+)
 
 
 def scene_targets():
@@ -271,8 +273,9 @@ FE_TITLES = {
 
 
 def drawing_targets():
-    """The element drawings (workflow/rules/drawings.smk)."""
-    return [f"paper_figures/{fig}.{ext}" for fig in ("fig11", "fig12", "fig16", "fig17") for ext in ("png", "csv")]
+    """The element drawings and Figs 1-2 (workflow/rules/drawings.smk)."""
+    figs = ("fig11", "fig12", "fig16", "fig17", *config.get("geometry_figures", {}))
+    return [f"paper_figures/{fig}.{ext}" for fig in figs for ext in ("png", "csv")]
 
 
 def fe_checks():

@@ -17,6 +17,7 @@ DRAWING_SOURCES = [
     "src/roughcontact/fe/quadrature.py",
     "src/roughcontact/paper/drawings.py",
     "src/roughcontact/paper/plots.py",
+    "src/roughcontact/paper/style.py",
 ]
 
 
@@ -26,6 +27,7 @@ rule drawing:
         code=DRAWING_SOURCES,
     output:
         png="paper_figures/{drawing}.png",
+        pdf="paper_figures/{drawing}.pdf",  # vector, beside the PNG (paper.style.save)
         csv="paper_figures/{drawing}.csv",
     log:
         "logs/drawing/{drawing}.log",
@@ -49,3 +51,42 @@ for _drawing in DRAWINGS:
         input:
             f"paper_figures/{_drawing}.png",
             f"paper_figures/{_drawing}.csv",
+
+
+# Figs 1 and 2 (config `geometry_figures`): a generated anisotropic surface with its mean planes,
+# one asperity with its contact ellipse, drawn from the library.
+GEOMETRY_FIGURES = list(config.get("geometry_figures", {}))
+
+
+rule geometry_figure:
+    """Fig. 1 or Fig. 2 (PNG + PDF), the drawn data (CSV) and the figure's numbers (JSON)."""
+    input:
+        code=["src/roughcontact/paper/geometry.py", "src/roughcontact/paper/plots.py",
+              "src/roughcontact/paper/style.py", "src/roughcontact/statistics/synthetic.py",
+              "src/roughcontact/statistics/surface.py", "src/roughcontact/asperity/ellipse.py"],
+    output:
+        png="paper_figures/{fig}.png",
+        pdf="paper_figures/{fig}.pdf",
+        csv="paper_figures/{fig}.csv",
+        json="results/geometry/{fig}.json",
+    log:
+        "logs/geometry/{fig}.log",
+    wildcard_constraints:
+        fig="|".join(GEOMETRY_FIGURES) or "none",
+    params:
+        cfg=lambda w: config["geometry_figures"][w.fig],
+        surface=lambda w: dict(config["surfaces"][config["geometry_figures"][w.fig]["surface"]]),
+    localrule: True
+    script:
+        "../scripts/geometry_figure.py"
+
+
+for _fig in GEOMETRY_FIGURES:
+
+    rule:
+        name:
+            _fig
+        localrule: True
+        input:
+            f"paper_figures/{_fig}.png",
+            f"paper_figures/{_fig}.csv",

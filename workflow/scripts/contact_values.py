@@ -26,13 +26,9 @@ def run(job, output, log):
             **{k: job[k] for k in ("accuracy", "dps") if k in job},
         )
         logger.info("computed in %.2f s", time.perf_counter() - t0)
-        ds = curves.to_dataset()[job["quantities"]]
-        # the library states units relative to E* and L; the scene's unit system makes them concrete
+        # the scene's unit system (config `units`) makes the library's units concrete
         length, stress = job["units"]["length"], job["units"]["stress"]
-        concrete = {"area_fraction": "1", "pressure": stress, "stiffness": f"{stress}/{length}"}
-        for q in job["quantities"]:
-            ds[q].attrs["units_in_library_terms"] = ds[q].attrs.get("units", "")
-            ds[q].attrs["units"] = concrete[q]
+        ds = curves.to_dataset(units=job["units"])[job["quantities"]]
         ds.attrs.update(
             scene=job["scene"],
             model_name=job["model_name"],

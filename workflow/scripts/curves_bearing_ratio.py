@@ -7,9 +7,11 @@ import xarray as xr
 
 from roughcontact import SpectralMoments, io
 from roughcontact.contact import bearing_area_ratio
+from roughcontact.contact.units import PARAMETER_LONG_NAMES, parameter_units
+from roughcontact.contact.units import attrs as contact_attrs
 
 
-def run(scene, scene_config, surfaces, provenance, output, log):
+def run(scene, scene_config, surfaces, provenance, output, log, units):
     with io.log_to(log) as logger:
         grid = scene_config["s"]
         s = np.linspace(grid["start"], grid["stop"], int(grid["num"]))
@@ -25,12 +27,12 @@ def run(scene, scene_config, surfaces, provenance, output, log):
             {"bearing_area_ratio": (("surface", "s"), np.array(ratios), {
                 "units": "1", "long_name": "A_G/A_B (summit-model over Gaussian bearing area, eqs. 24-25)"})},
             coords={
-                "surface": ("surface", names, {"units": "1", "long_name": "surface name (config/config.yaml)"}),
-                "label": ("surface", [c["label"] for c in scene_config["curves"]], {"units": "1"}),
-                "s": ("s", s, {"units": "1 (h/sqrt(m00))", "long_name": "separation h/sqrt(m00)"}),
+                "surface": ("surface", names, {"long_name": "surface name (config/config.yaml)"}),
+                "label": ("surface", [c["label"] for c in scene_config["curves"]], {"long_name": "legend label"}),
+                "s": ("s", s, contact_attrs("s", units)),
                 **{
-                    m: ("surface", [surfaces[n][m] for n in names], {"units": u})
-                    for m, u in (("m00", "um^2"), ("m20", "1"), ("m02", "1"), ("m40", "um^-2"), ("m04", "um^-2"))
+                    m: ("surface", [surfaces[n][m] for n in names], {"units": u, "long_name": PARAMETER_LONG_NAMES[m]})
+                    for m, u in parameter_units(units["length"], units["stress"]).items() if m in surfaces[names[0]]
                 },
             },
             attrs={"scene": scene},
@@ -41,4 +43,5 @@ def run(scene, scene_config, surfaces, provenance, output, log):
 
 if "snakemake" in globals():
     sm = snakemake  # noqa: F821
-    run(sm.params.scene, sm.params.scene_config, sm.params.surfaces, sm.params.provenance, sm.output[0], sm.log[0])
+    run(sm.params.scene, sm.params.scene_config, sm.params.surfaces, sm.params.provenance, sm.output[0], sm.log[0],
+        sm.config["units"])

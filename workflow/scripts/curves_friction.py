@@ -15,7 +15,7 @@ def run(scene, cfg, surface, units, provenance, output, log):
                                            directions=cfg["directions"])
         elif cfg["kind"] == "friction_hardening":
             ds = scenes.hardening_path(cfg["mu_m"], cfg["mu_o"], cfg["n"], k_T=cfg["k_T"], p_N=cfg["p_N"],
-                                       slip=cfg["slip"], steps=cfg["steps"])
+                                       slip=cfg["slip"], steps=cfg["steps"], length_unit=units["length"])
         elif cfg["kind"] == "friction_cases":
             ds = scenes.fig18_scene(surface, cfg, units)
         else:

@@ -17,7 +17,8 @@ def draw(element_name, title):
         fig = drawings.element_figure(element, title=title)
     else:
         raise ValueError(f"unknown element {element_name!r} (have {sorted(ELEMENTS) + sorted(INTERFACES)})")
-    return fig, report.render_rows_csv(drawings.node_table(element))
+    return fig, report.render_rows_csv(drawings.node_table(element),
+                                  units={"xi": "1", "eta": "1", "zeta": "1"})  # natural coordinates
 
 
 def run(element_name, title, out, log):

@@ -2,6 +2,7 @@
 roughcontact.fe.beam.beam_case and written as <variant>.nc (with provenance), <variant>.vtu
 and <variant>_interface.vtu in the job's directory."""
 
+import logging
 from pathlib import Path
 
 from roughcontact import io
@@ -19,7 +20,7 @@ def run(runs, provenance, out_dir, log):
                             variant, k, n, inc.level, inc.iterations, inc.cutbacks, inc.seconds)
 
             result = beam_case(run_cfg, progress)
-            logger.info("%s: u_N centre %+.5f um, end %+.5f um; %d dofs, %d interface points, %.2f s, "
+            logging.getLogger(io.PROGRESS).info("%s: u_N centre %+.5f um, end %+.5f um; %d dofs, %d interface points, %.2f s, "
                         "equilibrium %.1e", variant, result.u_N_centre_um, result.u_N_end_um, result.n_dofs,
                         result.n_points, result.seconds, result.equilibrium_error)
             io.write_netcdf(result.to_dataset(), out / f"{variant}.nc", config={**provenance, "variant": variant},

@@ -26,7 +26,7 @@ def run(paths, runs, cfg, expected, out, log):
             logger.info("%s: %s (%s) %s", c.id, c.verdict, c.status, c.detail)
         shown = report.shown_provenance(io.read_provenance(next(iter(data.values()))))
         io.write_text(out["md"], fe_beam.render_study_markdown(rows, checks, shown))
-        io.write_text(out["csv"], report.render_rows_csv(rows))
+        io.write_text(out["csv"], report.render_rows_csv(rows, units={"E_star": "N/mm^2", "mu": "1", "seconds": "s"}))
         io.write_text(out["checks"], verify.checks_to_csv(checks))
 
 

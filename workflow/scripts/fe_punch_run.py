@@ -2,6 +2,7 @@
 roughcontact.fe.punch.punch_case and written as <case>.nc (the whole load history, with
 provenance), <case>.vtu and <case>_interface.vtu (the maximum load) in the job's directory."""
 
+import logging
 from pathlib import Path
 
 from roughcontact import io
@@ -22,7 +23,7 @@ def run(runs, provenance, out_dir, log):
 
             result = punch_case(run_cfg, progress)
             ds = to_dataset(result)
-            logger.info("%s: D %.5g N mm, %d slipped points, %d dofs, %d contact points, %.2f s", case,
+            logging.getLogger(io.PROGRESS).info("%s: D %.5g N mm, %d slipped points, %d dofs, %d contact points, %.2f s", case,
                         ds.attrs["D_max_area_whole"], ds.attrs["slipped_points"], result.n_dofs, result.n_points,
                         result.seconds)
             io.write_netcdf(ds, out / f"{case}.nc", config={**provenance, "run": name},

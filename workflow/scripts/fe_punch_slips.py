@@ -17,7 +17,7 @@ def run(family, readings, paths, out, log):
         name = fe_punch.FAMILY_ROW[family]
         fig = plots.punch_slips(panels, title=f"Fig. {18 if family == 'quadratic' else 19}: directions of the plastic "
                                               f"slips at the contact points, {name} elements, maximum load")
-        io.write_text(out["csv"], report.render_rows_csv(rows))
+        io.write_text(out["csv"], report.render_rows_csv(rows, units=fe_punch.SLIP_ROW_UNITS))
         plots.save(fig, out["png"])
 
 

@@ -26,7 +26,8 @@ def run(paths, runs, cfg, paper, expected, out, log):
         rows = fe_punch.reading_rows({n: ds.attrs for n, ds in data.items()},
                                      {n: r for n, r in runs.items() if r["case"] != "frictionless"}, bounds)
         io.write_text(out["readings_md"], fe_punch.render_readings_markdown(rows, checks, shown, cfg["d_attr"]))
-        io.write_text(out["readings_csv"], report.render_rows_csv(rows))
+        io.write_text(out["readings_csv"], report.render_rows_csv(
+            rows, units={**{k: "N mm" for k in rows[0] if k.startswith("D_") or k == "bound"}, "seconds": "s"}))
         io.write_text(out["checks"], verify.checks_to_csv(checks))
 
 

@@ -7,8 +7,9 @@ from pathlib import Path
 import numpy as np
 import yaml
 
-from roughcontact import io
+from roughcontact import SpectralMoments, io
 from roughcontact.paper import claims, plots, verify
+from roughcontact.paper.style import SYMBOLS, axis_label, parameter_label, pretty_unit
 
 
 def _csv(header, columns):
@@ -22,11 +23,15 @@ def _csv(header, columns):
 
 def bearing_ratio(scene, cfg, ds):
     s = ds["s"].values
-    labels = [str(x) for x in ds["label"].values]
+    labels = []  # m00 = 3 µm², α = 3: the moments' own values and units (config `units`)
+    for i in range(ds.sizes["surface"]):
+        moments = {m: float(ds[m].values[i]) for m in ("m00", "m20", "m02", "m40", "m04")}
+        alpha = SpectralMoments(**moments).alpha1
+        labels.append(f"{parameter_label('m00', moments['m00'], ds['m00'].attrs['units'])}, $\\alpha$ = {alpha:.3g}")
     ratios = {lab: ds["bearing_area_ratio"].values[i] for i, lab in enumerate(labels)}
-    markers = {c["label"]: c.get("marker") for c in cfg["curves"]}
+    markers = {lab: c.get("marker") for lab, c in zip(labels, cfg["curves"])}
     fig = plots.fig3(s, ratios, markers=markers)
-    header = ["s"] + [f"AG_over_AB[{name}]" for name in ds["surface"].values]
+    header = ["s [1]"] + [f"AG_over_AB[{name}] [1]" for name in ds["surface"].values]
     data = _csv(header, [s, *ratios.values()])
     checks = [verify.claim_check(scene, claim, s, ratios, x_name="s") for claim in cfg["claims"]]
     return fig, data, checks
@@ -35,11 +40,12 @@ def bearing_ratio(scene, cfg, ds):
 def hertz_factors(scene, cfg, ds):
     e = ds["e"].values
     hertz = [str(h) for h in ds["hertz"].values]
-    curves = {f"hertz={h}": (ds["f1"].values[i], ds["f2"].values[i]) for i, h in enumerate(hertz)}
+    names = {"exact": "exact K, E", "paper": "paper's polynomials (36)-(39)"}
+    curves = {names.get(h, h): (ds["f1"].values[i], ds["f2"].values[i]) for i, h in enumerate(hertz)}
     fig = plots.fig4(e, curves)
-    header, columns = ["e"], [e]
+    header, columns = ["e [1]"], [e]
     for i, h in enumerate(hertz):
-        header += [f"f1[{h}]", f"f2[{h}]"]
+        header += [f"f1[{h}] [1]", f"f2[{h}] [1]"]
         columns += [ds["f1"].values[i], ds["f2"].values[i]]
     checks = []
     for claim in cfg["claims"]:
@@ -49,8 +55,11 @@ def hertz_factors(scene, cfg, ds):
 
 
 def _long_csv(ds, variables):
-    """The variables of ``ds`` in long form (one row per coordinate combination), full precision."""
-    return ds[list(variables)].to_dataframe().reset_index().to_csv(index=False, float_format="%.17g")
+    """The variables of ``ds`` in long form (one row per coordinate combination), full precision;
+    each numeric column headed ``name [units]`` (the netCDF units, from config `units`)."""
+    table = ds[list(variables)].to_dataframe().reset_index()
+    names = {c: f"{c} [{ds[c].attrs['units']}]" for c in table.columns if c in ds and "units" in ds[c].attrs}
+    return table.rename(columns=names).to_csv(index=False, float_format="%.17g")
 
 
 def _claims(scene, cfg, ds):
@@ -60,20 +69,21 @@ def _claims(scene, cfg, ds):
 
 def elastoplastic_psi(scene, cfg, ds):
     """Fig. 5 (plot: area_parts) or Fig. 6 (plot: mean_pressure) from the ψ-curves."""
-    labels = [f"{p:g}" for p in ds["psi"].values]
+    labels = [parameter_label("psi", p) for p in ds["psi"].values]
     load = dict(zip(labels, claims.load_axis(ds)))
     ds = ds.assign(load_W_over_HA0=(("psi", "s"), claims.load_axis(ds), {"units": "1"}))
     if cfg["plot"] == "area_parts":
         plastic, yielded = claims.fraction(ds, "plastic"), claims.fraction(ds, "yielded")
         fig = plots.fig5(load, dict(zip(labels, plastic)), dict(zip(labels, yielded)))
-        ds = ds.assign(plastic_over_A=(("psi", "s"), plastic), yielded_over_A=(("psi", "s"), yielded))
+        ds = ds.assign(plastic_over_A=(("psi", "s"), plastic, {"units": "1"}),
+                       yielded_over_A=(("psi", "s"), yielded, {"units": "1"}))
         table = _long_csv(ds, ["load_W_over_HA0", "plastic_over_A", "yielded_over_A", "area_fraction", "pressure"])
     else:
         ratio = claims.mean_pressure_over_H(ds)
         K_Y, tabor, c_h = 1.62, 0.354, 0.967  # captions; (68); (66)
-        levels = {"0.354 (prose)": tabor, "(2/3) K Y/H = 0.382": 2 / 3 * K_Y * tabor, "c_h = 0.967": c_h}
+        levels = {"0.354 (the prose)": tabor, "$(2/3)\\,K_Y Y/H$ = 0.382": 2 / 3 * K_Y * tabor, "$c_h$ = 0.967": c_h}
         fig = plots.fig6(load, dict(zip(labels, ratio)), levels)
-        ds = ds.assign(W_over_AH=(("psi", "s"), ratio))
+        ds = ds.assign(W_over_AH=(("psi", "s"), ratio, {"units": "1"}))
         table = _long_csv(ds, ["load_W_over_HA0", "W_over_AH", "area_fraction", "pressure"])
     return fig, table, _claims(scene, cfg, ds)
 
@@ -84,24 +94,42 @@ def stiffness_pressure(scene, cfg, ds):
     panels = {}
     for closure in order:
         e = ds.sel(closure=closure)
-        psi_txt = ", ".join(f"{p:.2f}" for p in e["material_psi"].values)
-        title = f"{closure}" + (" (figure)" if closure == cfg["figure_closure"] else "") + f": psi = {psi_txt}"
+        psis = sorted({round(float(p), 2) for p in e["material_psi"].values})
+        psi_txt = ", ".join(f"{p:.2f}" for p in psis)
+        title = f"closure {closure}" + (" (the figure)" if closure == cfg["figure_closure"] else "") + \
+            f"\n{SYMBOLS['psi']} = {psi_txt}"
         panels[title] = {
-            f"m00 = {m:g}": (e["elastic_model_pressure"].values[i], e["elastic_model_stiffness"].values[i],
+            parameter_label("m00", m, ds["m00"].attrs.get("units")): (e["elastic_model_pressure"].values[i], e["elastic_model_stiffness"].values[i],
                              e["pressure"].values[i], e["stiffness"].values[i])
             for i, m in enumerate(e["m00"].values)
         }
-    fig = plots.stiffness_vs_pressure(panels, xlim=tuple(cfg["pressure_range"]))
+    fig = plots.stiffness_vs_pressure(panels, xlim=tuple(cfg["pressure_range"]), units=_pk_units(ds))
     table = _long_csv(ds, ["pressure", "stiffness", "elastic_model_pressure", "elastic_model_stiffness"])
     return fig, table, _claims(scene, cfg, ds)
 
 
+def _pk_units(ds):
+    """(pressure, stiffness) units of a curves file (from config `units`)."""
+    return ds["pressure"].attrs["units"], ds["stiffness"].attrs["units"]
+
+
+def _variant_label(name, factors):
+    """{m20: 0.5, m02: 0.5} → "m20, m02 × 0.5" (mathtext); the base surface as such."""
+    if not factors:
+        return "base surface"
+    by_factor = {}
+    for k, f in factors.items():
+        by_factor.setdefault(float(f), []).append(SYMBOLS.get(k, k))
+    return "; ".join(f"{', '.join(ks)} × {f:g}" for f, ks in by_factor.items())
+
+
 def stiffness_sensitivity(scene, cfg, ds):
-    variants = {str(v): (ds["pressure"].sel(variant=v).values, ds["stiffness"].sel(variant=v).values)
+    variants = {_variant_label(str(v), cfg["variants"].get(str(v), {})):
+                (ds["pressure"].sel(variant=v).values, ds["stiffness"].sel(variant=v).values)
                 for v in ds["variant"].values}
-    by_psi = {f"psi = {p:g}": (ds["psi_pressure"].sel(psi=p).values, ds["psi_stiffness"].sel(psi=p).values)
+    by_psi = {parameter_label("psi", p): (ds["psi_pressure"].sel(psi=p).values, ds["psi_stiffness"].sel(psi=p).values)
               for p in ds["psi"].values}
-    fig = plots.stiffness_sensitivity(variants, by_psi, xlim=tuple(cfg["pressure_range"]))
+    fig = plots.stiffness_sensitivity(variants, by_psi, xlim=tuple(cfg["pressure_range"]), units=_pk_units(ds))
     table = _long_csv(ds, ["pressure", "stiffness", "elastic_model_pressure", "elastic_model_stiffness"])
     return fig, table, _claims(scene, cfg, ds)
 
@@ -111,9 +139,9 @@ def friction_slip_rule(scene, cfg, ds):
     first = str(ds["set"].values[0])
     e = ds.sel(set=first)
     panels = {
-        f"{first}: mu = ({float(e['mu_x']):g}, {float(e['mu_y']):g}), k = {k:g}": dict(
+        f"{first}: $\\mu_x$ = {float(e['mu_x']):g}, $\\mu_y$ = {float(e['mu_y']):g}, $k$ = {k:g}": dict(
             mu_x=float(e["mu_x"]), mu_y=float(e["mu_y"]), ratio=float(e["nu_y_over_nu_x"].sel(k=k)),
-            p_N=float(ds.attrs["p_N"]), **{v: e[v].sel(k=k).values for v in ("t_x", "t_y", "up_x", "up_y")})
+            p_N=1.0, **{v: e[v].sel(k=k).values for v in ("t_x", "t_y", "up_x", "up_y")})
         for k in e["k"].values
     }
     fig = plots.fig9(panels)
@@ -122,8 +150,10 @@ def friction_slip_rule(scene, cfg, ds):
 
 
 def friction_hardening(scene, cfg, ds):
-    fig = plots.slip_hardening(ds["kappa_x"].values, ds["traction_ratio"].values, ds["mu_x_89"].values,
-                               title=f"mu_m = {cfg['mu_m']:g}, mu_o = {cfg['mu_o']:g}, n = {cfg['n']:g} per length unit")
+    length = ds["kappa_x"].attrs["units"]
+    fig = plots.slip_hardening(ds["kappa_x"].values, ds["traction_ratio"].values, ds["mu_x_89"].values, units=length,
+                               title=f"$\\mu_m$ = {cfg['mu_m']:g}, $\\mu_o$ = {cfg['mu_o']:g}, "
+                                     f"$n$ = {cfg['n']:g} {pretty_unit(length + '-1')}")
     table = _long_csv(ds, ["u_x", "kappa_x", "traction_ratio", "mu_x_89"])
     return fig, table, _claims(scene, cfg, ds)
 
@@ -135,8 +165,8 @@ def friction_cases(scene, cfg, ds):
         u = np.hypot(d["u_x"].values, d["u_y"].values)
         panels[f"case ({case})"] = (np.where(d["loading"].values, u, 2 * u.max() - u),
                                     d["t_x"].values, d["t_y"].values, d["up_x"].values, d["up_y"].values)
-    fig = plots.friction_cases(panels, xlabel=f"imposed slip path, loading then unloading [{ds['up_x'].attrs['units']}]",
-                               ylabel=f"traction [{ds['t_x'].attrs['units']}]")
+    fig = plots.friction_cases(panels, xlabel=axis_label("imposed slip path, loading then unloading", ds["u_x"].attrs["units"]),
+                               ylabel=axis_label("traction", ds["t_x"].attrs["units"]))
     table = _long_csv(ds, ["t_x", "t_y", "up_x", "up_y", "dissipation"])
     return fig, table, _claims(scene, cfg, ds)
 

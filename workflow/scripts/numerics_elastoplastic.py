@@ -11,7 +11,7 @@ def run(scene, cfg, surfaces, output, log):
     with io.log_to(log) as logger:
         t0 = time.perf_counter()
         ds = scenes.elastoplastic_numerics(cfg["points"], surfaces, cfg["E_star"], production=cfg["production"],
-                                           reference_rtol=cfg["reference_rtol"])
+                                           reference_rtol=cfg["reference_rtol"], units=snakemake.config["units"])  # noqa: F821
         logger.info("%s: %d points in %.1f s", scene, ds.sizes["point"], time.perf_counter() - t0)
         ds.attrs["scene"] = scene
         io.write_netcdf(ds, output, config={"scene": scene, "scene_config": cfg, "surfaces": surfaces},

@@ -12,7 +12,10 @@ def run(scene, cfg, data, out, log):
         checks = claims.elastoplastic_numerics_checks(scene, ds, float(cfg["rtol"]), " ".join(cfg["why"].split()))
         for c in checks:
             logger.info("%s: %s %s", c.id, c.verdict, c.detail)
-        table = ds[["production", "reference"]].to_dataframe().reset_index().to_csv(index=False, float_format="%.17g")
+        names = [f"{m}_{c}" for c in ds.attrs["columns"].split() for m in ("production", "reference")]
+        table = ds[names].to_dataframe().reset_index()
+        table = table.rename(columns={n: f"{n} [{ds[n].attrs['units']}]" for n in names})  # units in the header
+        table = table.to_csv(index=False, float_format="%.17g")
         io.write_text(out["csv"], table)
         io.write_text(out["checks"], verify.checks_to_csv(checks))
 

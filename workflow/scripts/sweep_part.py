@@ -1,6 +1,7 @@
 """One part of a parameter sweep (rule sweep_part): split the configured sweep, evaluate the
-part, write netCDF with provenance. Progress goes to the rule's log."""
+part, write netCDF with provenance. Progress goes to the rule's log and the console."""
 
+import logging
 import time
 
 from roughcontact import io
@@ -14,8 +15,11 @@ def run(name, part, cfg, units, output, log):
                     {k: v.tolist() for k, v in spec.axes.items()}, spec.points)
         t0 = time.perf_counter()
 
+        console = logging.getLogger(io.PROGRESS)
+
         def progress(done, total):
-            logger.info("  %d/%d combinations, %.1f s", done, total, time.perf_counter() - t0)
+            console.info("sweep %s part %d: %d/%d combinations, %.1f s", name, part, done, total,
+                         time.perf_counter() - t0)
 
         ds = run_sweep(spec, progress=progress)
         ds.attrs.update(sweep=name, part=part)

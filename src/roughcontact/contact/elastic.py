@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import functools
 from dataclasses import dataclass, field
+from typing import Mapping
 
 import numpy as np
 
@@ -27,6 +28,7 @@ from ..statistics.gw import EquivalentGW
 from ..statistics.surface import SpectralMoments, gaussian_bearing_area
 from ..validation import choice, instance, positive, separations
 from .validity import VALIDITY_MODES, check_bandwidth, check_validity
+from .units import attrs, check_units
 
 __all__ = ["ContactCurves", "elastic_contact", "bearing_area", "bearing_area_ratio"]
 
@@ -64,16 +66,21 @@ class ContactCurves:
     surface: SpectralMoments
     units: dict = field(default_factory=_units)
 
-    def to_dataset(self):
-        """An xarray.Dataset over ``s`` with units and model metadata in the attributes."""
+    def to_dataset(self, units: Mapping[str, str] | None = None):
+        """An xarray.Dataset over ``s`` with CF metadata and the model in the attributes.
+
+        ``units`` = {"length": L, "stress": S} (UDUNITS strings, e.g. ``{"length": "um",
+        "stress": "N/mm^2"}``) states the unit system of the inputs: the moments in L, E* in
+        S; then W/A0 is in S and K/A0 in S/L. Without it W/A0 and K/A0 carry no ``units``
+        attribute (the library cannot know them) and :func:`roughcontact.io.write_netcdf`
+        refuses to store them.
+        """
         import xarray as xr
 
+        units = check_units(units)
         ds = xr.Dataset(
-            {
-                name: ("s", getattr(self, name), {"units": self.units[name]})
-                for name in ("area_fraction", "pressure", "stiffness")
-            },
-            coords={"s": ("s", self.s, {"units": self.units["s"], "long_name": "h/sqrt(m00)"})},
+            {name: ("s", getattr(self, name), attrs(name, units)) for name in ("area_fraction", "pressure", "stiffness")},
+            coords={"s": ("s", self.s, attrs("s", units))},
         )
         ds.attrs.update(
             model=self.model,

@@ -53,7 +53,7 @@ from __future__ import annotations
 import functools
 import math
 from dataclasses import dataclass, field
-from typing import ClassVar
+from typing import ClassVar, Mapping
 
 import numpy as np
 
@@ -65,6 +65,7 @@ from ..integrals.rules import elastoplastic_settings_for, theta_rule
 from ..statistics.surface import SpectralMoments
 from ..validation import choice, instance, separations
 from .validity import VALIDITY_MODES, check_bandwidth, check_validity
+from .units import attrs, check_units
 
 __all__ = ["ElastoPlasticCurves", "elastoplastic_contact"]
 
@@ -146,13 +147,17 @@ class ElastoPlasticCurves:
         "stiffness_jump",
     )
 
-    def to_dataset(self):
-        """An xarray.Dataset over ``s`` with units, material and surface in the attributes."""
+    def to_dataset(self, units: Mapping[str, str] | None = None):
+        """An xarray.Dataset over ``s`` with CF metadata, material and surface in the
+        attributes. ``units`` = {"length": L, "stress": S} (UDUNITS strings) states the unit
+        system of the inputs, as in :meth:`ContactCurves.to_dataset`; without it the
+        pressures and stiffnesses carry no ``units`` attribute."""
         import xarray as xr
 
+        units = check_units(units)
         ds = xr.Dataset(
-            {name: ("s", getattr(self, name), {"units": self.units[name]}) for name in self.FIELDS},
-            coords={"s": ("s", self.s, {"units": self.units["s"], "long_name": "h/sqrt(m00)"})},
+            {name: ("s", getattr(self, name), attrs(name, units)) for name in self.FIELDS},
+            coords={"s": ("s", self.s, attrs("s", units))},
         )
         m = self.material
         ds.attrs.update(

@@ -28,6 +28,7 @@ from ..statistics.surface import SpectralMoments
 from ..validation import choice
 from .closures import CLOSURES, DEFAULTS, default_closure, resolve_material
 from .validity import VALIDITY_MODES
+from .units import PARAMETER_LONG_NAMES, attrs, check_units, parameter_units
 
 __all__ = [
     "SweepSpec", "SWEEPABLE", "run_sweep", "split", "combine", "chunk_count", "parameter_units",
@@ -40,15 +41,6 @@ _MATERIAL = ("psi", "Y", "E_star", "c_h", "wp_over_wc", "yield_coefficient")
 SWEEPABLE = _MOMENTS + _MATERIAL
 
 _ELASTIC_FIELDS = ("area_fraction", "pressure", "stiffness")
-
-
-def parameter_units(length: str, stress: str) -> dict[str, str]:
-    """Units of the sweepable parameters (and of H, K_v) for the given length and stress units."""
-    return {
-        "m00": f"{length}^2", "m20": "1", "m02": "1", "m40": f"{length}^-2", "m04": f"{length}^-2",
-        "psi": "1", "Y": stress, "E_star": stress, "c_h": "1", "wp_over_wc": "1",
-        "yield_coefficient": "1", "H": stress, "K_v": "1",
-    }
 
 
 @dataclass(frozen=True)
@@ -64,7 +56,8 @@ class SweepSpec:
     validity "warn" (default): a grid whose heavy corner passes A/A0 = 1 (the paper's Figs 5–8
              plot such loads) warns there (contact.validity.ModelValidityWarning, naming s and
              A/A0) instead of losing the whole grid; "refuse" raises as the contact API does.
-    units    {"length": ..., "stress": ...} of the inputs (stored as the variables' units).
+    units    {"length": ..., "stress": ...} of the inputs, UDUNITS strings (stored as the variables' units;
+             None: the dimensional variables get no units attribute).
     """
 
     axes: Mapping[str, Sequence[float]]
@@ -75,7 +68,7 @@ class SweepSpec:
     accuracy: str = "plot"
     with_elastic: bool = True
     validity: str = "warn"
-    units: Mapping[str, str] = field(default_factory=lambda: {"length": "L", "stress": "unit of E*"})
+    units: Mapping[str, str] | None = None
 
     def __post_init__(self) -> None:
         axes = {str(k): np.atleast_1d(np.asarray(v, dtype=float)) for k, v in dict(self.axes).items()}
@@ -190,39 +183,23 @@ def run_sweep(spec: SweepSpec, progress: Callable[[int, int], None] | None = Non
         if progress is not None:
             progress(n, len(jobs))
 
-    L, S = spec.units["length"], spec.units["stress"]
-    punits = parameter_units(L, S)
-    vunits = {
-        "area_fraction": "1", "pressure": S, "stiffness": f"{S}/{L}", "stiffness_jump": f"{S}/{L}",
-        "elastic_area_fraction": "1", "elastoplastic_area_fraction": "1", "plastic_area_fraction": "1",
-        "elastic_pressure": S, "elastoplastic_pressure": S, "plastic_pressure": S,
-        "elastic_model_area_fraction": "1", "elastic_model_pressure": S, "elastic_model_stiffness": f"{S}/{L}",
-    }
-    long = {
-        "area_fraction": "real contact area fraction A/A0, eq. (78)",
-        "pressure": "nominal pressure W/A0, eq. (82)",
-        "stiffness": "normal stiffness K/A0 = -d(W/A0)/dh (Leibniz form, not (88))",
-        "stiffness_jump": "part of K/A0 due to a load jump at first yield",
-        "elastic_area_fraction": "A^e/A0, eq. (79)",
-        "elastoplastic_area_fraction": "A^ep/A0, eq. (80)",
-        "plastic_area_fraction": "A^p/A0, eq. (81)",
-        "elastic_pressure": "W^e/A0, eq. (83)",
-        "elastoplastic_pressure": "W^ep/A0, eq. (84)",
-        "plastic_pressure": "W^p/A0, eq. (85)",
-        "elastic_model_area_fraction": "A/A0 of the purely elastic model, eq. (52)",
-        "elastic_model_pressure": "W/A0 of the purely elastic model, eq. (53)",
-        "elastic_model_stiffness": "K/A0 of the purely elastic model, eq. (55)",
-    }
+    system = check_units(spec.units)
+    punits = parameter_units(system["length"], system["stress"]) if system else {
+        k: ("1" if u == "1" else None) for k, u in parameter_units("L", "S").items()}  # no unit stated
+
+    def param(n):
+        return {"long_name": PARAMETER_LONG_NAMES[n], **({"units": punits[n]} if punits[n] else {})}
+
     dims = (*spec.axes, "s")
     ds = xr.Dataset(
-        {k: (dims, v, {"units": vunits[k], "long_name": long[k]}) for k, v in data.items()},
+        {k: (dims, v, attrs(k, system)) for k, v in data.items()},
         coords={
-            **{n: (n, v, {"units": punits[n]}) for n, v in spec.axes.items()},
-            "s": ("s", spec.s, {"units": "1", "long_name": "separation h/sqrt(m00), eq. (23)"}),
+            **{n: (n, v, param(n)) for n, v in spec.axes.items()},
+            "s": ("s", spec.s, attrs("s", system)),
         },
     )
     for k, v in per_combo.items():
-        ds[f"material_{k}"] = (tuple(spec.axes), v, {"units": punits[k], "long_name": f"{k} of the resolved material"})
+        ds[f"material_{k}"] = (tuple(spec.axes), v, {**param(k), "long_name": f"{PARAMETER_LONG_NAMES[k]} of the resolved material"})
     ds.attrs.update(
         model="bgk-elastoplastic",
         closure=str(spec.closure),

@@ -217,8 +217,8 @@ def to_dataset(result: "PunchResult"):
     data["newton_iterations"] = ("level", np.asarray([i.iterations for i in result.solution.increments]),
                                  {"units": "1"})
     data["point_weight"] = ("point", pts.weights, {"units": "mm^2", "long_name": "area of the contact point"})
-    ds = xr.Dataset(data, coords={"x": ("point", pts.x[:, 0], {"units": "mm"}),
-                                  "y": ("point", pts.x[:, 1], {"units": "mm"})})
+    ds = xr.Dataset(data, coords={"x": ("point", pts.x[:, 0], {"units": "mm", "long_name": "x of the contact point"}),
+                                  "y": ("point", pts.x[:, 1], {"units": "mm", "long_name": "y of the contact point"})})
     for at in ("max", "end"):
         for weight in ("area", "none", "work"):
             ds.attrs[f"D_{at}_{weight}_whole"] = dissipation(result, at=at, weight=weight, whole=True)

@@ -7,7 +7,7 @@ element's own nodes, and the contact face is interpolated by ``element.face_elem
 nodes ``element.contact_face``. A wrong node order shows in the picture (a label in the wrong
 place, a scrambled contact face) instead of being hidden by a hand-written table.
 
-Functions return a ``matplotlib.figure.Figure`` on an Agg canvas (:func:`.plots.new_figure`).
+Functions return a ``matplotlib.figure.Figure`` on an Agg canvas (:func:`.style.new_figure`; laid out by hand: 3D axes placed by rectangle).
 Reference coordinates are dimensionless; mesh coordinates are in mm. Artists a test may look
 for carry a ``gid``: "node-label:<local index>", "contact-face", "pair:<i>", "integration-points",
 "interface-face", "support:<node set>", "load:<k>".
@@ -20,7 +20,7 @@ import numpy as np
 from ..fe.element import LOBATTO4, QUAD9, QUAD16, Element
 from ..fe.interface_element import InterfaceElement
 from ..fe.mesh import CellBlock, InterfaceBlock, Mesh, local_face
-from .plots import new_figure, style
+from .style import new_figure, style
 
 __all__ = [
     "KINDS", "node_kinds", "node_table", "label_positions", "edge_curves", "contact_outline",
@@ -200,7 +200,7 @@ def element_figure(element: Element, *, title: str, numbering: int = 1, elev: fl
     −64° the front vertical edge hides HEX21's node 11, at −70° HEX28's node 27)."""
     kinds = node_kinds(element.nodes)
     with style():
-        fig = new_figure(figsize=(6.4, 7.0))
+        fig = new_figure(figsize=(6.4, 7.0), layout=None)
         ax = _axes3d(fig, elev, azim)
         if element.contact_face:
             _polygon(ax, [contact_outline(element)], color=_CONTACT_COLOR, alpha=0.45, gid="contact-face",
@@ -250,7 +250,7 @@ def interface_figure(interface_element: InterfaceElement, *, title: str, gap: fl
     kinds = node_kinds(face.nodes) * 2
     points = interface_element.rule(rule).points
     with style():
-        fig = new_figure(figsize=(6.4, 7.0))
+        fig = new_figure(figsize=(6.4, 7.0), layout=None)
         ax = _axes3d(fig, elev, azim)
         sides = (("A", xa, "#85c1e9", f"side A: lower body / base, nodes {numbering}–{n - 1 + numbering}"),
                  ("B", xb, _CONTACT_COLOR, f"side B: upper body, nodes {n + numbering}–{2 * n - 1 + numbering}"))
@@ -378,7 +378,7 @@ def mesh_figure(mesh: Mesh, *, title: str, supports=(), loads=(), highlight_inte
         lo, hi = (np.asarray(v, dtype=float) for v in detail)
         panels = [(mesh, (0.0, 0.13, 0.52, 0.76)), (_clip(mesh, lo, hi, lift), (0.48, 0.13, 0.52, 0.76))]
     with style():
-        fig = new_figure(figsize=figsize)
+        fig = new_figure(figsize=figsize, layout=None)
         for k, (m, rect) in enumerate(panels):
             ax = _axes3d(fig, elev, azim, rect=rect)
             lifted = [(np.add(p, (0.0, 0.0, lift)), f, t) for p, f, t in loads] if k else loads

@@ -116,6 +116,10 @@ def slip_panel(ds) -> dict[str, np.ndarray]:
             "uy": _at_max(ds, "slip_y_um"), "status": _at_max(ds, "status")}
 
 
+#: units of the columns of :func:`slip_rows` whose names do not carry them (CSV header)
+SLIP_ROW_UNITS = {"t_x": "N/mm^2", "t_y": "N/mm^2", "p_N": "N/mm^2", "status": "1"}
+
+
 def slip_rows(ds, **labels) -> list[dict]:
     """The CSV rows of a panel: ``labels`` (e.g. reading, case), then per point x_mm, y_mm,
     slip_x_um, slip_y_um, t_x, t_y, p_N [N/mm²] and status at the maximum load."""

@@ -131,13 +131,14 @@ def shown_provenance(provenance: Mapping[str, Any]) -> dict[str, Any]:
             "commit": str(provenance.get("git_commit", "unknown"))[:12]}
 
 
-def render_rows_csv(rows: Sequence[Mapping[str, Any]]) -> str:
-    """Rows of equal keys as CSV, the first row's keys as header; floats (numpy's too) in their
-    shortest round-trip form."""
+def render_rows_csv(rows: Sequence[Mapping[str, Any]], units: Mapping[str, str] | None = None) -> str:
+    """Rows of equal keys as CSV, the first row's keys as header, each key in ``units`` written
+    ``key [unit]`` (UDUNITS); floats (numpy's too) in their shortest round-trip form."""
+    units = units or {}
     buf = _io.StringIO()
-    w = csv.DictWriter(buf, fieldnames=list(rows[0]), lineterminator="\n")
-    w.writeheader()
-    w.writerows({k: float(v) if isinstance(v, float) else v for k, v in row.items()} for row in rows)
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow([f"{k} [{units[k]}]" if k in units else k for k in rows[0]])
+    w.writerows([float(v) if isinstance(v, float) else v for v in row.values()] for row in rows)
     return buf.getvalue()
 
 

@@ -18,6 +18,8 @@ import xarray as xr
 from ..asperity import effective_modulus, paper_K_v
 from ..contact import elastoplastic_contact, resolve_material
 from ..contact.sweep import SweepSpec, parameter_units, run_sweep
+from ..contact.units import PARAMETER_LONG_NAMES
+from ..contact.units import attrs as contact_attrs
 from ..integrals.reference_elastoplastic import reference_integrals
 from ..interface import InterfaceLaw, NormalLawTable, friction
 from ..statistics.surface import SpectralMoments
@@ -52,7 +54,7 @@ def stiffness_curves(moments: Mapping[str, float], m00: Sequence[float], E_star:
                          closure=closure, hertz=hertz, accuracy=accuracy, **_units(units))
         parts.append(run_sweep(spec).expand_dims(closure=[closure]))
     ds = xr.concat(parts, dim="closure", combine_attrs="drop_conflicts")
-    ds["closure"].attrs["units"] = "1"
+    ds["closure"].attrs.update(long_name="plasticity-index closure (roughcontact.contact.closures)")
     ds.attrs.update(psi=float(psi), Y=float(Y))
     return ds
 
@@ -76,10 +78,11 @@ def stiffness_sensitivity(moments: Mapping[str, float], E_star: float, psi: floa
                          hertz=hertz, accuracy=accuracy, **_units(units))
         parts.append(run_sweep(spec).isel(psi=0, drop=True).expand_dims(variant=[name]))
     ds = xr.concat(parts, dim="variant", combine_attrs="drop_conflicts")
-    ds["variant"].attrs["units"] = "1"
-    punits = parameter_units(**(units or {"length": "L", "stress": "unit of E*"}))
+    ds["variant"].attrs.update(long_name="surface variant: moments scaled by the factors of variant_<moment>")
+    punits = parameter_units(**units) if units else {}
     for k in _MOMENTS:
-        ds[f"variant_{k}"] = ("variant", [rows[n][k] for n in rows], {"units": punits[k]})
+        ds[f"variant_{k}"] = ("variant", [rows[n][k] for n in rows],
+                              {**({"units": punits[k]} if k in punits else {}), "long_name": PARAMETER_LONG_NAMES[k]})
     by_psi = psi_curves(moments, E_star, psi_values, s, closure=closure, hertz=hertz, accuracy=accuracy, units=units)
     for v in ("pressure", "stiffness"):
         ds[f"psi_{v}"] = by_psi[v]
@@ -92,12 +95,13 @@ _EP_COLUMNS = ("elastic_area_fraction", "elastoplastic_area_fraction", "plastic_
 
 
 def elastoplastic_numerics(points: Sequence[Mapping], surfaces: Mapping[str, Mapping[str, float]],
-                           E_star: float, *, production="table", reference_rtol: float = 1e-10):
+                           E_star: float, *, production="table", reference_rtol: float = 1e-10, units=None):
     """Production (numba, preset ``production``) against the slow twin
     (elastoplastic.reference_integrals, adaptive cubature at ``reference_rtol``) at check points
     (each: surface name, ψ, s, hertz, optional ``paper_K_v_poisson`` for the paper's K_v of (75)).
-    Variables over (point, column): ``production``, ``reference``; columns are the regime parts
-    of A/A0 and W/A0 and K/A0 (totals are their sums)."""
+    Variables over ``point``: ``production_<column>``, ``reference_<column>`` for each column of
+    the attribute ``columns`` (the regime parts of A/A0 and W/A0, and K/A0; totals are sums of
+    parts), in the unit system ``units`` ({"length", "stress"})."""
     prod, ref, labels = [], [], []
     for pt in points:
         surface = SpectralMoments(**surfaces[pt["surface"]])
@@ -109,12 +113,15 @@ def elastoplastic_numerics(points: Sequence[Mapping], surfaces: Mapping[str, Map
         ref.append(list(reference_integrals(surface, pt["s"], mat, hertz=pt["hertz"], rtol=reference_rtol)[:7]))
         labels.append(f"{pt['surface']},psi={pt['psi']:g},s={pt['s']:g},{pt['hertz']}"
                       + ("" if nu is None else f",K_v(nu={nu:g})"))
-    dims = ("point", "column")
+    data = {}
+    for method, values in (("production", np.array(prod)), ("reference", np.array(ref))):
+        for j, col in enumerate(_EP_COLUMNS):
+            meta = contact_attrs(col, units)
+            data[f"{method}_{col}"] = ("point", values[:, j], {**meta, "long_name": f"{meta['long_name']} ({method})"})
     return xr.Dataset(
-        {"production": (dims, np.array(prod), {"units": "A/A0: 1; W/A0: unit of E*; K/A0: unit of E* per L"}),
-         "reference": (dims, np.array(ref), {"units": "as production"})},
-        coords={"point": ("point", labels, {"units": "1"}), "column": ("column", list(_EP_COLUMNS), {"units": "1"})},
-        attrs={"production_preset": str(production), "reference_rtol": reference_rtol, "E_star": E_star},
+        data, coords={"point": ("point", labels, {"long_name": "check point: surface, psi, s, Hertz functions"})},
+        attrs={"production_preset": str(production), "reference_rtol": reference_rtol, "E_star": E_star,
+               "columns": " ".join(_EP_COLUMNS)},
     )
 
 
@@ -167,25 +174,30 @@ def slip_rule_geometry(mu: Mapping[str, tuple], k_values: Sequence[float], *, di
             data["beta"][a, b] = friction.traction_angle(s[:, [friction.T_X, friction.T_Y]])  # eq. (116)
             ratio[a, b] = (mu_y / mu_x) ** k  # eq. (98)
     dims = ("set", "k", "direction")
-    # dimensionless demonstration: p_N = 1, k_T = 1 (any consistent units)
-    units = {"t_x": "unit of p_N", "t_y": "unit of p_N", "up_x": "unit of p_N/k_T", "up_y": "unit of p_N/k_T",
-             "alpha": "rad", "beta": "rad"}
+    # dimensionless demonstration: tractions in units of p_N, slips in units of p_N/k_T
+    meta = {"t_x": ("1", "traction t_x / p_N"), "t_y": ("1", "traction t_y / p_N"),
+            "up_x": ("1", "plastic slip u^p_x / (p_N/k_T)"), "up_y": ("1", "plastic slip u^p_y / (p_N/k_T)"),
+            "alpha": ("rad", "slip angle, eq. (114)"), "beta": ("rad", "traction angle, eq. (116)")}
     ds = xr.Dataset(
-        {v: (dims, data[v], {"units": units[v]}) for v in data},
-        coords={"set": ("set", names, {"units": "1"}), "k": ("k", ks, {"units": "1"}),
+        {v: (dims, data[v] / (p_N if v[0] == "t" else p_N / k_T if v[:2] == "up" else 1.0),
+             {"units": meta[v][0], "long_name": meta[v][1]}) for v in data},
+        coords={"set": ("set", names, {"long_name": "friction parameter set"}),
+                "k": ("k", ks, {"units": "1", "long_name": "exponent k of the slip potential, eq. (98)"}),
                 "direction": ("direction", phi, {"units": "rad", "long_name": "imposed slip direction"})},
     )
     ds["nu_y_over_nu_x"] = (("set", "k"), ratio, {"units": "1", "long_name": "(mu_y/mu_x)^k, eq. (98)"})
-    ds["mu_x"] = ("set", [float(mu[n][0]) for n in names], {"units": "1"})
-    ds["mu_y"] = ("set", [float(mu[n][1]) for n in names], {"units": "1"})
+    ds["mu_x"] = ("set", [float(mu[n][0]) for n in names], {"units": "1", "long_name": "friction coefficient along x"})
+    ds["mu_y"] = ("set", [float(mu[n][1]) for n in names], {"units": "1", "long_name": "friction coefficient along y"})
     ds.attrs.update(p_N=p_N, k_T=k_T)
     return ds
 
 
-def hardening_path(mu_m: float, mu_o: float, n: float, *, k_T: float, p_N: float, slip: float, steps: int):
+def hardening_path(mu_m: float, mu_o: float, n: float, *, k_T: float, p_N: float, slip: float, steps: int,
+                   length_unit: str = "um"):
     """A material-point slip-hardening curve: monotone slip along x (axis-aligned, so κ_x is
     the plastic slip) in ``steps`` equal increments up to ``slip`` [length] at pressure p_N;
-    the traction ratio t_x/p_N against the accumulated slip κ_x, and μ_x(κ_x) of (89)."""
+    the traction ratio t_x/p_N against the accumulated slip κ_x, and μ_x(κ_x) of (89).
+    ``length_unit``: of the slips (the inverse of n's unit)."""
     model = friction.OrthotropicHardening(mu_m, mu_m, mu_o, mu_o, n, n, k=0.0)
     u = np.linspace(0.0, slip, steps + 1)[1:]
     du = np.zeros((1, steps, 2))
@@ -195,17 +207,17 @@ def hardening_path(mu_m: float, mu_o: float, n: float, *, k_T: float, p_N: float
     return xr.Dataset(
         {
             "traction_ratio": ("step", s[:, friction.T_X] / p_N, {"units": "1", "long_name": "t_x/p_N"}),
-            "kappa_x": ("step", kappa, {"units": "1/n (length unit of n)", "long_name": "accumulated slip, errata E19"}),
+            "kappa_x": ("step", kappa, {"units": length_unit, "long_name": "accumulated slip, errata E19"}),
             "mu_x_89": ("step", model.mu(kappa, kappa)[0], {"units": "1", "long_name": "mu_x of eq. (89)"}),
-            "u_x": ("step", u, {"units": "1/n (length unit of n)", "long_name": "imposed tangential displacement"}),
+            "u_x": ("step", u, {"units": length_unit, "long_name": "imposed tangential displacement"}),
         },
-        coords={"step": ("step", np.arange(steps), {"units": "1"})},
+        coords={"step": ("step", np.arange(steps), {"units": "1", "long_name": "load step"})},
         attrs=dict(mu_m=mu_m, mu_o=mu_o, n=n, k_T=k_T, p_N=p_N),
     )
 
 
 def fig18_paths(cases: Sequence[str], k_N: float, p_N: float, *, angle_deg: float, u_max: float,
-                steps: int, length_unit: str = "um", stress_unit: str = "unit of p_N"):
+                steps: int, length_unit: str = "um", stress_unit: str = "N/mm^2"):
     """Tractions against imposed slip for the parameter sets (a), (b), (c) of the Fig. 18
     caption (friction.fig18_preset) at one material point under pressure p_N: the tangential
     displacement goes from 0 to ``u_max`` along ``angle_deg`` from x and back to 0 (2 ×
@@ -227,11 +239,14 @@ def fig18_paths(cases: Sequence[str], k_N: float, p_N: float, *, angle_deg: floa
             out[v][c] = s[..., col]
     dims = ("case", "path", "step")
     units = {"t_x": stress_unit, "t_y": stress_unit, "up_x": length_unit, "up_y": length_unit,
-             "dissipation": f"{stress_unit}*{length_unit}"}
+             "dissipation": f"{stress_unit} {length_unit}"}
+    long = {"t_x": "traction t_x", "t_y": "traction t_y", "up_x": "plastic slip u^p_x", "up_y": "plastic slip u^p_y",
+            "dissipation": "frictional dissipation per unit area"}
     ds = xr.Dataset(
-        {v: (dims, out[v], {"units": units[v]}) for v in names},
-        coords={"case": ("case", list(cases), {"units": "1"}), "path": ("path", ["direct", "swapped"], {"units": "1"}),
-                "step": ("step", np.arange(incr.shape[1]), {"units": "1"})},
+        {v: (dims, out[v], {"units": units[v], "long_name": long[v]}) for v in names},
+        coords={"case": ("case", list(cases), {"long_name": "Fig. 18 case"}),
+                "path": ("path", ["direct", "swapped"], {"long_name": "slip path: direct, or x and y exchanged"}),
+                "step": ("step", np.arange(incr.shape[1]), {"units": "1", "long_name": "load step"})},
     )
     ds["u_x"] = (("path", "step"), paths[:, 1:, 0], {"units": length_unit})
     ds["u_y"] = (("path", "step"), paths[:, 1:, 1], {"units": length_unit})

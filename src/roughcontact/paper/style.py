@@ -1,0 +1,184 @@
+"""The one owner of how the project's figures look: rcParams, colours, the layout engine,
+units in axis labels, legends as a person writes them, and saving (PNG and PDF).
+
+* Every figure is a ``matplotlib.figure.Figure`` on an Agg canvas with the *constrained*
+  layout engine (:func:`new_figure`): nothing overlaps and nothing is clipped at the edge.
+* Units come from the configuration (``units: {length: um, stress: N/mm^2}``) or from a
+  netCDF variable's ``units`` attribute and are shown as typeset (:func:`pretty_unit`:
+  ``um`` → µm, ``N/mm^2`` → N/mm², ``N mm-2 um-1`` → N/(mm²·µm)).
+* Legends read ``ψ = 0.35``, ``m₀₀ = 0.0625 µm²`` (:func:`parameter_label`), and sit outside
+  the data (:func:`legend_outside`) where the data fill the axes.
+* :func:`save` writes the PNG and a vector PDF beside it, both without creation dates, so two
+  runs of the same data give the same files.
+
+No pyplot: importing this module never changes a user's interactive backend.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import re
+from pathlib import Path
+from typing import Iterator
+
+import numpy as np
+
+from ..files import atomic_path
+
+__all__ = [
+    "STYLE", "COLORS", "style", "new_figure", "save", "color", "ordered_colors", "pretty_unit",
+    "axis_label", "parameter_label", "legend_outside", "note",
+]
+
+#: rcParams of every figure of the project.
+STYLE: dict = {
+    "figure.figsize": (6.0, 4.2),
+    "figure.dpi": 100,
+    "savefig.dpi": 150,
+    "font.size": 10,
+    "axes.labelsize": 10,
+    "axes.titlesize": 10,
+    "legend.fontsize": 9,
+    "legend.frameon": False,
+    "axes.grid": True,
+    "grid.alpha": 0.3,
+    "grid.linewidth": 0.6,
+    "lines.linewidth": 1.4,
+    "lines.markersize": 5,
+    "axes.spines.top": False,
+    "axes.spines.right": False,
+    "svg.hashsalt": "roughcontact",
+    "path.simplify": False,
+    "pdf.fonttype": 42,  # TrueType in the PDF: text stays text (searchable, editable)
+}
+
+#: the qualitative colours (curves that are not ordered by a parameter)
+COLORS = ("#1b4f72", "#b03a2e", "#1e8449", "#7d3c98", "#b9770e")
+
+#: how a parameter name of the configuration is written on a figure (mathtext)
+SYMBOLS = {
+    "psi": r"$\psi$", "m00": r"$m_{00}$", "m20": r"$m_{20}$", "m02": r"$m_{02}$", "m40": r"$m_{40}$",
+    "m04": r"$m_{04}$", "E_star": r"$E^*$", "Y": r"$Y$", "mu": r"$\mu$", "mu_m": r"$\mu_m$",
+    "mu_o": r"$\mu_o$", "n": r"$n$", "k": r"$k$", "c_h": r"$c_h$", "s": r"$s$", "e": r"$e$",
+}
+
+_SUPERSCRIPT = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
+
+
+@contextlib.contextmanager
+def style() -> Iterator[None]:
+    """The project's rcParams for the duration of the block."""
+    import matplotlib
+
+    with matplotlib.rc_context(STYLE):
+        yield
+
+
+def new_figure(**kwargs):
+    """A Figure on an Agg canvas (no pyplot), the project's style, the constrained layout
+    engine (pass ``layout=None`` to place axes by hand)."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    kwargs.setdefault("layout", "constrained")
+    with style():
+        fig = Figure(**kwargs)
+        FigureCanvasAgg(fig)
+    return fig
+
+
+def save(fig, path: str | os.PathLike, *, dpi: int | None = None) -> Path:
+    """Write ``fig`` as PNG at ``path`` and as PDF beside it (same stem), neither with a
+    creation date, each atomically (files.atomic_path); return the PNG's path."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    with style():
+        with atomic_path(path) as tmp:
+            fig.savefig(tmp, format="png", dpi=dpi or STYLE["savefig.dpi"], metadata={"Software": None})
+        with atomic_path(path.with_suffix(".pdf")) as tmp:
+            fig.savefig(tmp, format="pdf",
+                        metadata={"CreationDate": None, "ModDate": None, "Producer": None, "Creator": "roughcontact"})
+    return path
+
+
+def color(i: int) -> str:
+    """The i-th qualitative colour (cycling)."""
+    return COLORS[i % len(COLORS)]
+
+
+def ordered_colors(n: int) -> list:
+    """n distinct colours for an ordered parameter (ψ): viridis without its pale yellow end."""
+    from matplotlib import colormaps
+
+    cmap = colormaps["viridis"]
+    return [cmap(x) for x in np.linspace(0.0, 0.85, max(n, 2))][:n]
+
+
+def _factor(name: str, power: int) -> str:
+    """One unit factor typeset: µ for micro, the power as a superscript."""
+    name = {"um": "µm", "micron": "µm", "ohm": "Ω", "deg": "°"}.get(name, name)
+    return name + (str(power).translate(_SUPERSCRIPT) if power != 1 else "")
+
+
+def pretty_unit(units: str) -> str:
+    """A UDUNITS string as typeset: ``"um"`` → ``"µm"``, ``"N/mm^2"`` → ``"N/mm²"``,
+    ``"N/mm^2/um"`` and ``"N mm-2 um-1"`` → ``"N/(mm²·µm)"``, ``"um^2"`` → ``"µm²"``,
+    ``"1"`` → ``"–"``. Factors are read left to right (UDUNITS: ``a/b/c`` = a/(b·c)); a
+    string it cannot read is returned with ``um`` → ``µm`` only."""
+    u = str(units).strip()
+    if u in ("1", ""):
+        return "–"
+    num, den = [], []
+    for op, token in re.findall(r"(/?)\s*([^\s*./]+)", u):
+        m = re.fullmatch(r"([A-Za-z]+)(?:\^?\(?(-?\d+)\)?)?", token)
+        if not m:
+            return re.sub(r"\bum\b", "µm", u)
+        power = int(m.group(2) or 1) * (-1 if op else 1)
+        (num if power > 0 else den).append(_factor(m.group(1), abs(power)))
+    top = "·".join(num) or "1"
+    if not den:
+        return top
+    return f"{top}/({'·'.join(den)})" if len(den) > 1 else f"{top}/{den[0]}"
+
+
+def axis_label(quantity: str, units: str | None = None) -> str:
+    """``"W/A0 [N/mm²]"``: the quantity and its typeset unit (none for a pure number)."""
+    if units is None or str(units).strip() in ("1", ""):
+        return quantity
+    return f"{quantity} [{pretty_unit(units)}]"
+
+
+def parameter_label(name: str, value, units: str | None = None, *, fmt: str = "g") -> str:
+    """A legend entry as a person writes it: ``parameter_label("psi", 0.35)`` → ``ψ = 0.35``,
+    ``parameter_label("m00", 0.0625, "um^2")`` → ``m₀₀ = 0.0625 µm²``."""
+    symbol = SYMBOLS.get(name, name)
+    text = value if isinstance(value, str) else format(float(value), fmt)
+    unit = "" if units is None or str(units).strip() in ("1", "") else " " + pretty_unit(units)
+    return f"{symbol} = {text}{unit}"
+
+
+def legend_outside(fig, ax=None, *, where: str = "right", **kwargs):
+    """The legend outside the data: beside the axes (``where="right"``) or below the figure
+    (``"bottom"``); the constrained layout makes room for it. Entries come from ``ax``, or
+    from every axes of the figure (each label once) when ``ax`` is None."""
+    entries: dict = {}
+    for a in ([ax] if ax is not None else fig.axes):
+        for handle, label in zip(*a.get_legend_handles_labels()):
+            entries.setdefault(label, handle)
+    labels, handles = list(entries), list(entries.values())
+    if where == "right":
+        kwargs.setdefault("loc", "outside right upper")
+    else:
+        kwargs.setdefault("loc", "outside lower center")
+        kwargs.setdefault("ncol", min(len(labels), 4) or 1)
+    return fig.legend(handles, labels, **kwargs)
+
+
+def note(ax, text: str, *, loc: str = "lower right", **kwargs):
+    """A short note inside the axes, in a corner, on a white box (e.g. "curves coincide")."""
+    x, ha = (0.98, "right") if "right" in loc else (0.02, "left")
+    y, va = (0.02, "bottom") if "lower" in loc else (0.98, "top")
+    kwargs.setdefault("fontsize", 8)
+    return ax.text(x, y, text, transform=ax.transAxes, ha=ha, va=va,
+                   bbox=dict(boxstyle="round,pad=0.3", fc="white", ec="0.7", lw=0.6), **kwargs)
