@@ -27,6 +27,8 @@ import tempfile
 import textwrap
 from pathlib import Path
 
+import numpy as np
+
 ROOT = Path(__file__).resolve().parents[1]
 SEED = ROOT / "benchmarks" / "data" / "references.json"
 
@@ -87,7 +89,7 @@ def _points() -> list[dict]:
     pts.append({"model": "elastic", "surface": "table1", "moments": t1, "s": [1.0] * 64, "kind": "batch of 64"})
     for psi in (PSI, 5.0):
         pts.append({"model": "elastoplastic", "surface": "table1", "moments": t1, "psi": psi,
-                    "s": [float(x) for x in __import__("numpy").linspace(0.0, 4.0, 200)], "kind": "curve of 200"})
+                    "s": [float(x) for x in np.linspace(0.0, 4.0, 200)], "kind": "curve of 200"})
     return pts
 
 
@@ -148,8 +150,9 @@ def markdown(out: dict, references: dict) -> str:
     labels = list(out)
     head = (["model", "point", "preset"] + [f"time per separation, {lb}" for lb in labels]
             + [f"ratio {labels[0]} / {lb}" for lb in labels[1:]] + [f"max error A, W, K, {lb}" for lb in labels])
-    lines = [f"trees: {', '.join(f'{lb} ({out[lb]['module']})' for lb in labels)}; load averages per round: "
-             + "; ".join(f"{lb} {[round(x[0], 2) for x in out[lb]['loadavg_rounds']]}" for lb in labels), "",
+    trees = ", ".join(f"{lb} ({out[lb]['module']})" for lb in labels)
+    loads = "; ".join(f"{lb} {[round(x[0], 2) for x in out[lb]['loadavg_rounds']]}" for lb in labels)
+    lines = [f"trees: {trees}; load averages per round: {loads}", "",
              "| " + " | ".join(head) + " |", "|" + " --- |" * len(head)]
     first = out[labels[0]]["rows"]
     for i, r in enumerate(first):
@@ -157,8 +160,6 @@ def markdown(out: dict, references: dict) -> str:
         ref = _reference(references, r)
         errs = []
         for row in rows:
-            import numpy as np
-
             v = np.asarray(row["values"], dtype=float)
             if ref is not None:
                 e = float(np.max(np.abs(v[:, 0] / np.asarray(ref) - 1.0)))
