@@ -56,27 +56,34 @@ def run(scene, cfg, surfaces, output, log, seed=refs.SEED):
                         settings={"production": cfg["production"], "reference_rtol": cfg["reference_rtol"]})
 
 
+def twin_calls(config: dict):
+    """(surface, s, material, hertz, rtol) of the twin at every ep_numerics point of a parsed
+    config/config.yaml, as scenes.elastoplastic_numerics builds them."""
+    from roughcontact import SpectralMoments
+    from roughcontact.asperity import paper_K_v
+    from roughcontact.contact import resolve_material
+
+    cfg = config["scenes"]["ep_numerics"]
+    for pt in cfg["points"]:
+        surface = SpectralMoments(**config["surfaces"][pt["surface"]])
+        nu = pt.get("paper_K_v_poisson")
+        mat = resolve_material(surface, E_star=cfg["E_star"], psi=pt["psi"],
+                               K_v=None if nu is None else float(paper_K_v(nu)))
+        yield surface, pt["s"], mat, pt["hertz"], cfg["reference_rtol"]
+
+
 def update_seed() -> int:
     """Compute the twin at every ep_numerics point of config/config.yaml and merge the values
     into the seed (ReferenceCache.update_seed)."""
     import yaml
 
-    from roughcontact import SpectralMoments
-    from roughcontact.asperity import paper_K_v
-    from roughcontact.contact import resolve_material
-
     config = yaml.safe_load((REPO / "config" / "config.yaml").read_text())
-    cfg = config["scenes"]["ep_numerics"]
     with tempfile.TemporaryDirectory() as tmp:
         cache = refs.ReferenceCache(Path(tmp) / "twin.json", seed=refs.SEED)
         twin = seeded_twin(cache)
-        for pt in cfg["points"]:
-            surface = SpectralMoments(**config["surfaces"][pt["surface"]])
-            nu = pt.get("paper_K_v_poisson")
-            mat = resolve_material(surface, E_star=cfg["E_star"], psi=pt["psi"],
-                                   K_v=None if nu is None else float(paper_K_v(nu)))
-            twin(surface, pt["s"], mat, hertz=pt["hertz"], rtol=cfg["reference_rtol"])
-            print(f"{pt}: done", flush=True)
+        for surface, s, mat, hertz, rtol in twin_calls(config):
+            twin(surface, s, mat, hertz=hertz, rtol=rtol)
+            print(f"s = {s}, {mat}: done", flush=True)
         return cache.update_seed()
 
 
