@@ -159,6 +159,7 @@ def figure(results: dict, path) -> None:
     styles = {
         "production": dict(color="#1b4f72", marker="o", ls="-"),
         "production (batch)": dict(color="#1b4f72", marker="s", ls="none", mfc="none"),
+        "production (curve)": dict(color="#1b4f72", marker="P", ls="none"),
         "GL product rule": dict(color="#b03a2e", marker="^", ls="-"),
         "scipy twin": dict(color="#1e8449", marker="D", ls="-"),
         "scipy tplquad": dict(color="#1e8449", marker="*", ls="none", ms=10),

@@ -168,6 +168,28 @@ def _batch_rows(model, point, surface, s, ref, rows):
         v = refs.first_values(c)
         row.errors = _relative_errors(v, ref)
         rows.append(row)
+    if model == "elastoplastic":
+        _curve_row(point, surface, s, ref, rows)
+
+
+def _curve_row(point, surface, s, ref, rows, n=201):
+    """A curve of n separations on [s − 1, s + 1] in one call, preset "plot" (built from the
+    verified interpolant in s, contact.s_interpolation); time per separation and the error at
+    its middle point s."""
+    mat = refs.material_for(PSI, surface)
+    svals = np.linspace(s - 1.0, s + 1.0, n)
+    svals[n // 2] = s
+    fn = lambda: elastoplastic_contact(surface, svals, mat, accuracy="plot")  # noqa: E731
+    c = fn()
+    row = Row("elastoplastic", point, f"prod plot (curve of {n}, s-interpolated)", "production (curve)",
+              note=f"{c.interpolation.nodes} model evaluations, measured interpolation error "
+                   f"{c.interpolation.error:.1e} ({c.interpolation.method})")
+    for _ in range(3):
+        _, dt = _timed(fn, n)
+        row.seconds.append(dt)
+    row.values = np.array([c.area_fraction[n // 2], c.pressure[n // 2], c.stiffness[n // 2]])
+    row.errors = _relative_errors(row.values, ref)
+    rows.append(row)
 
 
 def _mpmath_rows(point, surface, s, ref, rows):

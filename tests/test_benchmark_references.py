@@ -48,3 +48,23 @@ def test_recorded_tplquad_rows_say_they_were_not_re_measured():
     assert "not re-measured" in note
     method, note = speed_vs_error.tplquad_label("area", rec, measured_now=True)
     assert method == "scipy tplquad (area only)" and "measured in this run" in note
+
+
+def test_seed_holds_the_twin_at_every_ep_numerics_point():
+    """The workflow's ep_numerics checks take the twin from the seed (44–64 s per point
+    otherwise): a new or changed check point must come with
+    `workflow/scripts/numerics_elastoplastic.py --update-seed`."""
+    import importlib.util
+
+    import yaml
+
+    root = Path(__file__).resolve().parents[1]
+    spec = importlib.util.spec_from_file_location("numerics_ep", root / "workflow/scripts/numerics_elastoplastic.py")
+    script = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(script)
+    seed = json.loads(refs.SEED.read_text())
+    calls = list(script.twin_calls(yaml.safe_load((root / "config/config.yaml").read_text())))
+    assert calls
+    for call in calls:
+        key = script.twin_key(*call)
+        assert key in seed and seed[key]["fingerprint"] == refs.code_fingerprint(), call

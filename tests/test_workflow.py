@@ -24,7 +24,7 @@ def fresh_clone(tmp_path) -> Path:
     dest = tmp_path / "clone"
     dest.mkdir()
     shutil.copy2(ROOT / "Snakefile", dest / "Snakefile")
-    for d in ("workflow", "config", "src", "docs"):
+    for d in ("workflow", "config", "src", "docs", "benchmarks"):  # benchmarks/: the seed of the twin checks
         if (ROOT / d).exists():
             shutil.copytree(ROOT / d, dest / d, ignore=shutil.ignore_patterns("__pycache__", "*.egg-info"))
     return dest

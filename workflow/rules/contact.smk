@@ -22,9 +22,12 @@ rule numba_warmup:
 
 
 rule reference:
-    """mpmath reference values of one table scene and model level (slow: cached per dps)."""
+    """mpmath reference values of one table scene and model level (slow: cached per dps; the
+    anisotropic model's come from the committed seed when the reference code is unchanged)."""
     input:
         lib=PHYSICS_SOURCES,
+        seed="benchmarks/data/references.json",
+        cache_code="benchmarks/references.py",
     output:
         "results/reference/dps{dps}/{scene}/{model}.nc",
     log:

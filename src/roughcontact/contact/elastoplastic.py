@@ -66,6 +66,7 @@ from ..statistics.surface import SpectralMoments
 from ..validation import choice, instance, separations
 from .validity import VALIDITY_MODES, check_bandwidth, check_validity
 from .units import attrs, check_units
+from .s_interpolation import SInterpolation, interpolated_columns
 
 __all__ = ["ElastoPlasticCurves", "elastoplastic_contact"]
 
@@ -115,6 +116,8 @@ class ElastoPlasticCurves:
     surface: SpectralMoments
     psi: float
     units: dict = field(default_factory=_units)
+    #: how the curve was obtained over s (contact.s_interpolation; None: direct)
+    interpolation: SInterpolation | None = None
 
     @property
     def mean_real_pressure(self) -> np.ndarray:
@@ -174,6 +177,8 @@ class ElastoPlasticCurves:
             psi=self.psi,
             **self.surface.as_dict(),
         )
+        if self.interpolation is not None:
+            ds.attrs.update(self.interpolation.as_attrs())
         return ds
 
 
@@ -239,6 +244,26 @@ def _production(surface, l_values, material, hertz, accuracy) -> np.ndarray:
     return out
 
 
+#: the column groups whose sum is each production column's total (s_interpolation's
+#: relative-error floor): area parts, load parts, K (with its jump part)
+_COLUMN_TOTALS = ((0, 1, 2),) * 3 + ((3, 4, 5),) * 3 + ((6,), (6,))
+#: tolerance of the s-interpolation check per preset: a tenth of the preset's stated bound
+#: (integrals.rules.ELASTOPLASTIC_PRESETS: "table" 1e-11, "plot" 1e-8), so interpolated
+#: curves stay within it; QuadratureSettings given directly: a tenth of 1e-8 (issue 13's
+#: accuracy target)
+S_RTOL = {"table": 1e-12, "plot": 1e-9}
+S_RTOL_OTHER = 1e-9
+
+
+def _s_rtol(accuracy, s_rtol) -> float:
+    if s_rtol is not None:
+        s_rtol = float(s_rtol)
+        if not (0.0 < s_rtol < 1.0):
+            raise ValueError(f"s_rtol must be in (0, 1), got {s_rtol!r}")
+        return s_rtol
+    return S_RTOL.get(accuracy, S_RTOL_OTHER) if isinstance(accuracy, str) else S_RTOL_OTHER
+
+
 # ---------------------------------------------------------------------------------------
 # public API
 # ---------------------------------------------------------------------------------------
@@ -251,6 +276,8 @@ def elastoplastic_contact(
     accuracy="table",
     method: str = "production",
     validity: str = "refuse",
+    interpolate_s: bool = True,
+    s_rtol: float | None = None,
 ) -> ElastoPlasticCurves:
     """Elasto-plastic contact per unit nominal area at separations ``s`` = h/√m00 (23).
 
@@ -264,6 +291,12 @@ def elastoplastic_contact(
     method    "production" (numba) or "reference" (the scipy slow twin; seconds per point).
     validity  "refuse" | "warn" | "off": outside the model's range (contact.validity): warnings
               for s < 0 or A/A0 > 0.1, ValueError for A/A0 > 1 unless "warn".
+    interpolate_s  with ≥ 48 distinct separations, build the curve from a verified Chebyshev
+              interpolant in s (contact.s_interpolation: the interpolant agrees with direct
+              evaluation between its nodes to ``s_rtol``; falls back to every point when no
+              grid with fewer nodes than points verifies). Production only.
+    s_rtol    tolerance of that check; default a tenth of the preset's stated bound
+              (S_RTOL), so that the curve stays within the preset's bound.
 
     Returns :class:`ElastoPlasticCurves`: A/A0, W/A0 (unit of E*), K/A0 = −d(W/A0)/dh (unit of
     E* per L) and the elastic / elasto-plastic / plastic parts of area and load.
@@ -271,9 +304,16 @@ def elastoplastic_contact(
     s_arr = _check_inputs(surface, s, material, hertz, method)
     choice("validity", validity, VALIDITY_MODES)
     check_bandwidth(surface.mu, method)
+    how = None
     if method == "production":
         elastoplastic_settings_for(accuracy)  # validates the preset name
-        cols = _production(surface, surface.l_from_s(s_arr), material, hertz, accuracy)
+        rtol = _s_rtol(accuracy, s_rtol)
+        def evaluate(x):
+            return _production(surface, surface.l_from_s(x), material, hertz, accuracy)
+        if interpolate_s:
+            cols, how = interpolated_columns(evaluate, s_arr, rtol, _COLUMN_TOTALS)
+        else:
+            cols, how = evaluate(s_arr), SInterpolation("direct", s_arr.size, 0, math.nan, rtol)
     else:
         cols = np.array([reference_integrals(surface, float(x), material, hertz=hertz) for x in s_arr])
     Ae, Aep, Ap, We, Wep, Wp, K, Kj = (np.asarray(cols[:, q], dtype=float) for q in range(8))
@@ -295,4 +335,5 @@ def elastoplastic_contact(
         material=material,
         surface=surface,
         psi=plasticity_index(surface, material),
+        interpolation=how,
     )

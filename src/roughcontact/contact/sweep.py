@@ -56,6 +56,9 @@ class SweepSpec:
     validity "warn" (default): a grid whose heavy corner passes A/A0 = 1 (the paper's Figs 5–8
              plot such loads) warns there (contact.validity.ModelValidityWarning, naming s and
              A/A0) instead of losing the whole grid; "refuse" raises as the contact API does.
+    interpolate_s each elasto-plastic curve from a verified Chebyshev interpolant in s when it
+             has ≥ 48 separations (elastoplastic_contact; the measured bound is in the
+             Dataset's attributes ``s_interpolation_*``).
     units    {"length": ..., "stress": ...} of the inputs, UDUNITS strings (stored as the variables' units;
              None: the dimensional variables get no units attribute).
     """
@@ -68,6 +71,7 @@ class SweepSpec:
     accuracy: str = "plot"
     with_elastic: bool = True
     validity: str = "warn"
+    interpolate_s: bool = True
     units: Mapping[str, str] | None = None
 
     def __post_init__(self) -> None:
@@ -165,9 +169,11 @@ def run_sweep(spec: SweepSpec, progress: Callable[[int, int], None] | None = Non
         data.update({f"elastic_model_{f}": np.empty(shape) for f in _ELASTIC_FIELDS})
     per_combo = {k: np.empty(shape[:-1]) for k in ("psi", "Y", "H")}
     elastic_done = {}  # the elastic model depends on (surface, E*) only, not on the material
+    how = []
     for n, (idx, surface, material) in enumerate(jobs, start=1):
         ep = elastoplastic_contact(surface, spec.s, material, hertz=spec.hertz, accuracy=spec.accuracy,
-                                   validity=spec.validity)
+                                   validity=spec.validity, interpolate_s=spec.interpolate_s)
+        how.append(ep.interpolation)
         for f in ep_fields:
             data[f][idx] = getattr(ep, f)
         if spec.with_elastic:
@@ -206,8 +212,24 @@ def run_sweep(spec: SweepSpec, progress: Callable[[int, int], None] | None = Non
         hertz=spec.hertz,
         accuracy=spec.accuracy,
         **{f"fixed_{k}": v for k, v in spec.fixed.items()},
+        **_interpolation_attrs([h.as_attrs() for h in how]),
     )
     return ds
+
+
+def _interpolation_attrs(records) -> dict:
+    """The s-interpolation of a sweep's curves from their attributes (SInterpolation.as_attrs,
+    or those of sweep pieces): "chebyshev" if every curve was interpolated, "direct" if none,
+    else "mixed"; the largest measured error between nodes over the interpolated curves (the
+    bound), the tolerance and the number of model evaluations."""
+    methods = {r["s_interpolation"] for r in records}
+    errors = [r["s_interpolation_error"] for r in records if r["s_interpolation"] != "direct"]
+    return {
+        "s_interpolation": methods.pop() if len(methods) == 1 else "mixed",
+        "s_interpolation_error": float(np.nanmax(errors)) if errors else float("nan"),
+        "s_interpolation_rtol": max(float(r["s_interpolation_rtol"]) for r in records),
+        "s_interpolation_nodes": int(sum(int(r["s_interpolation_nodes"]) for r in records)),
+    }
 
 
 def split(spec: SweepSpec, axis: str, chunks: int) -> list[SweepSpec]:
@@ -225,8 +247,11 @@ def combine(pieces: Sequence, axis: str):
 
     if not pieces:
         raise ValueError("nothing to combine")
-    return xr.concat(list(pieces), dim=axis, data_vars="all", coords="minimal", compat="override",
-                     combine_attrs="override")
+    ds = xr.concat(list(pieces), dim=axis, data_vars="all", coords="minimal", compat="override",
+                   combine_attrs="override")
+    if all("s_interpolation" in p.attrs for p in pieces):  # the whole sweep's, not the first piece's
+        ds.attrs.update(_interpolation_attrs([p.attrs for p in pieces]))
+    return ds
 
 
 def chunk_count(spec: SweepSpec, axis: str, points_per_job: int) -> int:
@@ -260,5 +285,6 @@ def spec_from_config(cfg: Mapping, units: Mapping[str, str] | None = None) -> Sw
         hertz=cfg.get("hertz", "exact"),
         accuracy=cfg.get("accuracy", "plot"),
         with_elastic=bool(cfg.get("with_elastic", True)),
+        interpolate_s=bool(cfg.get("interpolate_s", True)),
         **({"units": dict(units)} if units else {}),
     )

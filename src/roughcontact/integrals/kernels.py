@@ -433,10 +433,11 @@ def _asperity_elastic(omega, kappa, f1, f2, E_star):
 
 
 @numba.njit(cache=True)
-def _asperity_elastoplastic(omega, kappa, f1, f3, wc, ratio, cH, dp, ln_r):
+def _asperity_elastoplastic(omega, kappa, f1, f3, wc, ratio, cH, dp, ln_r, ln_q):
     """asperity.respond, elasto-plastic branch ω_c < ω < ω_p: (76), (75), (77) and dW/dω.
 
-    ratio = ω_p/ω_c, cH = c_h H, dp = H (c_h − (2/3) K_v), ln_r = ln(ω_p/ω_c)."""
+    ratio = ω_p/ω_c, cH = c_h H, dp = H (c_h − (2/3) K_v), ln_r = ln(ω_p/ω_c), ln_q = ln(ω_p/ω)
+    (the caller's: the t-rule in ln t has it without a log)."""
     d = 2.0 * f3 - f1
     t = omega / wc  # ω/ω_c
     x = (t - 1.0) / (ratio - 1.0)  # (ω − ω_c)/(ω_p − ω_c)
@@ -444,7 +445,7 @@ def _asperity_elastoplastic(omega, kappa, f1, f3, wc, ratio, cH, dp, ln_r):
     dg = 6.0 * x * (1.0 - x)
     bracket = f1 + d * g
     A = bracket * math.pi * omega / kappa  # eq. (76)
-    p = cH - dp * math.log(ratio / t) / ln_r  # eq. (75)
+    p = cH - dp * ln_q / ln_r  # eq. (75)
     W = A * p  # eq. (77)
     dA = (bracket + d * dg * t / (ratio - 1.0)) * math.pi / kappa
     S = dA * p + (bracket * math.pi / kappa) * dp / ln_r
@@ -473,7 +474,8 @@ def _asperity_law_array(omega, kappa, f1, f2, f3, wc, E_star, ratio, cH, dp, ln_
             A, W, S = _asperity_plastic(w, kappa[i], f3[i], cH)
             reg = 2.0
         else:
-            A, W, S = _asperity_elastoplastic(w, kappa[i], f1[i], f3[i], wc[i], ratio, cH, dp, ln_r)
+            A, W, S = _asperity_elastoplastic(w, kappa[i], f1[i], f3[i], wc[i], ratio, cH, dp, ln_r,
+                                              math.log(ratio / (w / wc[i])))
             reg = 1.0
         out[i, 0] = A
         out[i, 1] = W
@@ -573,18 +575,21 @@ def _t_ep_piece(lo, hi, a, e, yt, wt, in_log, sigma, kappa, f1, f3, wc, ratio, c
     row = _t_rule_row(lo, hi, a, span if in_log else 0.0)
     y = yt[row]
     w = wt[row]
+    ln_top = math.log(ratio * wc / (sigma * lo)) if in_log else 0.0  # ln(ω_p/ω) at t = lo
     for k in range(y.shape[0]):
         if w[k] == 0.0:
             break
         if in_log:
             t = lo * math.exp(span * y[k])
             jac = span * t
+            ln_q = ln_top - span * y[k]
         else:
             t = lo + span * y[k]
             jac = span
+            ln_q = math.log(ratio / (sigma * t / wc))
         d = t - a
         f = jac * w[k] * _INV_SQRT_2PI * math.exp(e - 0.5 * d * d)
-        A, W, S = _asperity_elastoplastic(sigma * t, kappa, f1, f3, wc, ratio, cH, dp, ln_r)
+        A, W, S = _asperity_elastoplastic(sigma * t, kappa, f1, f3, wc, ratio, cH, dp, ln_r, ln_q)
         acc_a += f * A
         acc_w += f * W
         acc_s += f * S

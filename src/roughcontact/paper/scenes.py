@@ -95,13 +95,16 @@ _EP_COLUMNS = ("elastic_area_fraction", "elastoplastic_area_fraction", "plastic_
 
 
 def elastoplastic_numerics(points: Sequence[Mapping], surfaces: Mapping[str, Mapping[str, float]],
-                           E_star: float, *, production="table", reference_rtol: float = 1e-10, units=None):
+                           E_star: float, *, production="table", reference_rtol: float = 1e-10, units=None,
+                           reference=reference_integrals):
     """Production (numba, preset ``production``) against the slow twin
     (elastoplastic.reference_integrals, adaptive cubature at ``reference_rtol``) at check points
     (each: surface name, ψ, s, hertz, optional ``paper_K_v_poisson`` for the paper's K_v of (75)).
     Variables over ``point``: ``production_<column>``, ``reference_<column>`` for each column of
     the attribute ``columns`` (the regime parts of A/A0 and W/A0, and K/A0; totals are sums of
-    parts), in the unit system ``units`` ({"length", "stress"})."""
+    parts), in the unit system ``units`` ({"length", "stress"}). ``reference``: the twin, called
+    as reference_integrals is (the workflow passes one that takes the value from a committed seed
+    when the twin's code is unchanged)."""
     prod, ref, labels = [], [], []
     for pt in points:
         surface = SpectralMoments(**surfaces[pt["surface"]])
@@ -110,7 +113,7 @@ def elastoplastic_numerics(points: Sequence[Mapping], surfaces: Mapping[str, Map
                                K_v=None if nu is None else float(paper_K_v(nu)))
         c = elastoplastic_contact(surface, [pt["s"]], mat, hertz=pt["hertz"], accuracy=production)
         prod.append([float(getattr(c, k)[0]) for k in _EP_COLUMNS])
-        ref.append(list(reference_integrals(surface, pt["s"], mat, hertz=pt["hertz"], rtol=reference_rtol)[:7]))
+        ref.append(list(reference(surface, pt["s"], mat, hertz=pt["hertz"], rtol=reference_rtol)[:7]))
         labels.append(f"{pt['surface']},psi={pt['psi']:g},s={pt['s']:g},{pt['hertz']}"
                       + ("" if nu is None else f",K_v(nu={nu:g})"))
     data = {}
