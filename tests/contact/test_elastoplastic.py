@@ -199,7 +199,7 @@ def test_table_preset_has_converged_quick():
     leaves 4e-9 on A^e); "table" uses r-level 5. Measured: table 3e-14, plot 5e-9."""
     mat = material(5.0)
     fine = elastoplastic_contact(FIG, [0.0], mat, accuracy=QuadratureSettings(5, 6, 5))
-    for preset, tol in (("table", 1e-11), ("plot", 1e-7)):
+    for preset, tol in (("table", 1e-11), ("plot", 1e-8)):
         c = elastoplastic_contact(FIG, [0.0], mat, accuracy=preset)
         _compare(_prod_columns(c), _prod_columns(fine), tol)
 
@@ -211,7 +211,7 @@ def test_table_preset_has_converged(psi):
     mat = material(psi)
     # convergence over the figures' range: psi = 50 passes A/A0 = 1 at s = -1 (warned, not refused)
     fine = elastoplastic_contact(FIG, s, mat, accuracy=QuadratureSettings(6, 6, 6), validity="warn")
-    for preset, tol in (("table", 1e-11), ("plot", 1e-7)):
+    for preset, tol in (("table", 1e-11), ("plot", 1e-8)):
         c = elastoplastic_contact(FIG, s, mat, accuracy=preset, validity="warn")
         for i in range(s.size):
             _compare(_prod_columns(c, i), _prod_columns(fine, i), tol)
