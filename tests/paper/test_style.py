@@ -35,3 +35,24 @@ def test_gallery_verdicts():
     rows = [{"verdict": "reproduced"}, {"verdict": "not reproduced"}]
     assert gallery.verdict_of(rows)[0] == "partly" and "1 of 2" in gallery.verdict_of(rows)[1]
     assert gallery.verdict_of(rows[:1])[0] == "reproduced"
+
+
+def test_nothing_is_clipped_in_the_fig18_point_panels():
+    """The review of issue 15 saw Fig. 18's point figure cut its right x-label at the edge
+    ("[um"): the three panels share one x-label now, and no text leaves the figure."""
+    import numpy as np
+
+    from roughcontact.paper import plots
+
+    u = np.linspace(0.0, 10.0, 50)
+    panels = {f"case ({c})": (u, np.sin(u), np.cos(u), u, u) for c in "abc"}
+    fig = plots.friction_cases(panels, xlabel=style.axis_label("imposed slip path, loading then unloading", "um"),
+                               ylabel=style.axis_label("traction", "N/mm^2"))
+    assert style.texts_outside(fig) == []
+
+
+def test_texts_outside_sees_a_clipped_label():
+    fig = style.new_figure(figsize=(2.0, 2.0))
+    ax = fig.add_subplot()
+    ax.set_xlabel("a label much longer than the two inches of this figure can hold [um]")
+    assert style.texts_outside(fig) == ["a label much longer than the two inches of this figure can hold [um]"]

@@ -300,9 +300,9 @@ def friction_cases(panels: Mapping[str, tuple], *, xlabel: str, ylabel: str):
             ax.plot(u, tx, color=_COLORS[0], label=r"$t_x$")
             ax.plot(u, ty, color=_COLORS[1], label=r"$t_y$")
             ax.axhline(0.0, color="0.5", linewidth=0.6)
-            ax.set_xlabel(xlabel)
             ax.set_ylabel(ylabel)
             ax.set_title(title, fontsize=9)
+        fig.supxlabel(xlabel, fontsize=STYLE["axes.labelsize"])  # once for all panels: it is longer than one
         legend_outside(fig, where="bottom")
     return fig
 

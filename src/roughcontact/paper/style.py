@@ -102,6 +102,36 @@ def save(fig, path: str | os.PathLike, *, dpi: int | None = None) -> Path:
     return path
 
 
+def texts_outside(fig) -> list[str]:
+    """What a PNG of ``fig`` would clip once laid out: the axes' labels, titles, drawn tick
+    labels and legends, and the figure's own texts and legends, that reach beyond its edges
+    (each named by its text, or "ticks of <axis label>")."""
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    box = fig.bbox
+
+    def outside(artist):
+        ext = artist.get_tightbbox(renderer)
+        return ext is not None and (ext.x0 < box.x0 - 0.5 or ext.x1 > box.x1 + 0.5
+                                    or ext.y0 < box.y0 - 0.5 or ext.y1 > box.y1 + 0.5)
+
+    out = []
+    for ax in fig.axes:
+        for axis in (ax.xaxis, ax.yaxis):
+            if axis.label.get_visible() and axis.label.get_text() and outside(axis.label):
+                out.append(axis.label.get_text())
+            labels = [t for t in axis.get_ticklabels() if t.get_visible()]
+            if any(outside(t) for t in labels) and outside(axis):  # axis: only the ticks drawn
+                out.append(f"ticks of {axis.label.get_text() or axis.axis_name}")
+        out += [a.get_text() for a in (ax.title, *ax.texts) if a.get_text() and outside(a)]
+        out += ["legend" for leg in [ax.get_legend()] if leg is not None and outside(leg)]
+    out += [t.get_text() for t in fig.texts if t.get_text() and outside(t)]
+    out += [t.get_text() for t in (getattr(fig, "_supxlabel", None), getattr(fig, "_suptitle", None))
+            if t is not None and t.get_text() and outside(t)]
+    out += ["legend" for leg in fig.legends if outside(leg)]
+    return out
+
+
 def color(i: int) -> str:
     """The i-th qualitative colour (cycling)."""
     return COLORS[i % len(COLORS)]
