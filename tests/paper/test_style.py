@@ -49,6 +49,9 @@ def test_nothing_is_clipped_in_the_fig18_point_panels():
     fig = plots.friction_cases(panels, xlabel=style.axis_label("imposed slip path, loading then unloading", "um"),
                                ylabel=style.axis_label("traction", "N/mm^2"))
     assert style.texts_outside(fig) == []
+    renderer = fig.canvas.get_renderer()  # and the legend does not cover the shared x-label
+    legend, label = fig.legends[0].get_window_extent(renderer), fig._supxlabel.get_window_extent(renderer)
+    assert not legend.overlaps(label)
 
 
 def test_texts_outside_sees_a_clipped_label():

@@ -303,7 +303,7 @@ def friction_cases(panels: Mapping[str, tuple], *, xlabel: str, ylabel: str):
             ax.set_ylabel(ylabel)
             ax.set_title(title, fontsize=9)
         fig.supxlabel(xlabel, fontsize=STYLE["axes.labelsize"])  # once for all panels: it is longer than one
-        legend_outside(fig, where="bottom")
+        legend_outside(fig, where="right")  # not below: the shared x-label is there
     return fig
 
 
