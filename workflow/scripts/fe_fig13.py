@@ -9,6 +9,7 @@ import yaml
 
 from roughcontact import io
 from roughcontact.paper import plots
+from roughcontact.paper.style import parameter_label
 
 #: the paper's markers (Fig. 13 caption): m00 = 0.0625 triangles, 0.3125 crosses, 0.625 squares
 MARKERS = {0.0625: "^", 0.3125: "x", 0.625: "s"}
@@ -25,7 +26,7 @@ def run(paths, runs, paper, out, log):
         for name in sorted(paths, key=lambda n: -runs[n]["m00"]):
             run_cfg = runs[name]
             ds = io.read_netcdf(paths[name])
-            label = f"m00 = {run_cfg['m00']:g} µm²"
+            label = parameter_label("m00", run_cfg["m00"], "um^2")
             x, u = ds["x"].values, ds["u_N_um"].values
             profiles[label] = (x, u, MARKERS.get(run_cfg["m00"], "o"))
             i = rows.index(run_cfg["case"])
