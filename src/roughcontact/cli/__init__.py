@@ -195,18 +195,6 @@ def _add_modulus_options(parser) -> None:
     )
 
 
-def recorded_warnings(caught) -> list[str]:
-    """The messages of warnings recorded by ``warnings.catch_warnings(record=True)``, each once,
-    as "Category: message" (shown as ``warning:`` lines and the JSON list ``warnings``). Each is
-    also re-emitted once, so that :func:`main` prints it on stderr as for every other command."""
-    messages = {}
-    for w in caught:
-        messages.setdefault(f"{w.category.__name__}: {w.message}", w)
-    for w in messages.values():
-        warnings.warn(w.message, w.category, stacklevel=2)
-    return list(messages)
-
-
 def effective_modulus_from(args) -> float:
     """E* of --E-star or of --E1/--nu1 [--E2/--nu2] (asperity.effective_modulus, eq. (42))."""
     if args.E_star is not None:

@@ -8,7 +8,7 @@ from typing import Any
 from ..statistics import SpectralMoments
 from . import (
     CLOSURES, EP_DEFAULTS, MODELS, SURFACE_UNITS, _MOMENTS, _contact_parent, _real,
-    effective_modulus_from, recorded_warnings,
+    effective_modulus_from,
 )
 
 __all__ = ["add_commands"]
@@ -117,6 +117,7 @@ def _contact(args, surface, compute, **law):
     """Run the contact model at --s, --h or --pressure; relay warnings. Returns (curves, extra
     payload fields: h [L], the requested pressures, the warnings)."""
     from ..contact.at_pressure import contact_at_pressure
+    from ..contact.validity import relay_warnings
 
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
@@ -127,7 +128,7 @@ def _contact(args, surface, compute, **law):
         else:
             s = args.s if args.s is not None else [h / surface.height_std for h in args.h]
             curves = compute(s)
-    messages = recorded_warnings(caught)
+    messages = relay_warnings(caught)
     extra = {"h": [float(x * surface.height_std) for x in curves.s],
              "pressure_requested": None if args.pressure is None else [float(p) for p in args.pressure],
              "warnings": messages}

@@ -10,7 +10,7 @@ from typing import Any
 import numpy as np
 
 from . import (
-    CLIError, EP_DEFAULTS, _MOMENTS, _add_modulus_options, _real, effective_modulus_from, recorded_warnings,
+    CLIError, EP_DEFAULTS, _MOMENTS, _add_modulus_options, _real, effective_modulus_from,
 )
 
 __all__ = ["add_commands", "read_height_map"]
@@ -120,6 +120,7 @@ def read_height_map(path: str) -> np.ndarray:
 
 
 def _run_moments(args) -> dict[str, Any]:
+    from ..contact.validity import relay_warnings
     from ..statistics.measure import measure_heights, rotate_map
 
     z = read_height_map(args.file) * args.z_scale
@@ -154,7 +155,7 @@ def _run_moments(args) -> dict[str, Any]:
                   "lay_angle_deg": "deg (from the map's x axis to the lay, counter-clockwise)",
                   "dx": L, "dy": L, "wavenumbers": "angular (rad per unit length), no 2*pi in m_pq",
                   "at_twice_the_interval": "as m00 ... m04: the map sampled at 2 dx, 2 dy (band-limit check)"},
-        "warnings": recorded_warnings(caught),
+        "warnings": relay_warnings(caught),
     }
 
 
@@ -175,6 +176,7 @@ def _render_moments(payload: dict[str, Any]) -> str:
 
 def _run_export(args) -> dict[str, Any]:
     from ..contact.closures import resolve_material
+    from ..contact.validity import relay_warnings
     from ..interface.export import CALCULIX_MAX_ROWS, format_table, friction_block, overclosure_table
     from .contact import _surface_from
 
@@ -221,7 +223,7 @@ def _run_export(args) -> dict[str, Any]:
         "table": [[float(p) * args.stress_scale, float(c) * args.length_scale]
                   for p, c in zip(table.pressure, table.overclosure)],
         "text": text,
-        "warnings": recorded_warnings(caught),
+        "warnings": relay_warnings(caught),
     }
 
 

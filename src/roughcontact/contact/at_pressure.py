@@ -23,6 +23,7 @@ from ..statistics.surface import SpectralMoments
 from ..validation import instance, positive
 from .elastic import S_MAX_RATIO, ContactCurves, elastic_contact
 from .elastoplastic import ElastoPlasticCurves, elastoplastic_contact
+from .validity import relay_warnings
 
 __all__ = ["ContactAtPressure", "contact_at_pressure"]
 
@@ -107,14 +108,8 @@ def contact_at_pressure(surface: SpectralMoments, p, *, E_star=None, material=No
         _warnings.simplefilter("always")
         s = _solve(evaluate, target, surface.height_std, rtol)
         curves = evaluate(s, validity)
-    messages = []
-    for w in caught:
-        text = f"{w.category.__name__}: {w.message}"
-        if text not in messages:
-            messages.append(text)
-            _warnings.warn(w.message, w.category, stacklevel=2)
     return ContactAtPressure(pressure_target=target, h=s * surface.height_std, curves=curves,
-                             warnings=tuple(messages))
+                             warnings=tuple(relay_warnings(caught)))
 
 
 def _solve(evaluate, target, sigma, rtol) -> np.ndarray:

@@ -30,6 +30,7 @@ import numpy as np
 from ..validation import choice
 
 __all__ = [
+    "relay_warnings",
     "AREA_RATIO_LIMIT",
     "MU_ACCURATE",
     "VALIDITY_MODES",
@@ -110,3 +111,16 @@ def check_bandwidth(mu: float, method: str) -> None:
             f"production quadrature's stated accuracy is tested down to mu = {MU_ACCURATE:.3g} only; "
             f"below it the agreement with the mpmath reference degrades (measured {measured}); "
             "use method='reference' to check", AccuracyWarning, stacklevel=3)
+
+
+def relay_warnings(caught, *, stacklevel: int = 3) -> list[str]:
+    """The warnings recorded by ``warnings.catch_warnings(record=True)`` as messages
+    "Category: message", each once, in order; each is also re-emitted once, ``stacklevel``
+    counted as for :func:`warnings.warn` from the caller's caller (3: the code that called the
+    function recording them), so that results can carry their warnings and callers still see them."""
+    first: dict = {}
+    for w in caught:
+        first.setdefault(f"{w.category.__name__}: {w.message}", w)
+    for w in first.values():
+        warnings.warn(w.message, w.category, stacklevel=stacklevel)
+    return list(first)
