@@ -9,13 +9,17 @@ sys.path.insert(0, os.path.abspath("../src"))
 project = "roughcontact"
 author = "roughcontact contributors"
 copyright = "2026, roughcontact contributors"
-extensions = ["sphinx.ext.autodoc"]
+extensions = ["sphinx.ext.autodoc", "myst_parser"]
+# the guides are Markdown (MyST); dollar maths and heading anchors as GitHub renders them
+myst_enable_extensions = ["dollarmath"]
+myst_heading_anchors = 3
+source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
 autodoc_member_order = "bysource"
 autodoc_default_options = {"members": True, "show-inheritance": False}
 autodoc_typehints = "description"
 # numba-compiled kernels and the workflow's plotting stack are not part of the API reference
 autodoc_mock_imports = ["matplotlib", "snakemake", "yaml", "jsonschema"]
-exclude_patterns = ["_build", "investigations", "*.md"]
+exclude_patterns = ["_build"]
 html_theme = "alabaster"
 nitpicky = False
 suppress_warnings = ["toc.not_readable"]
