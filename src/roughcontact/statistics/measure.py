@@ -379,7 +379,7 @@ def _measure_fd(residual, dx, dy, order, lay_angle_deg):
     uncertainty["lay_angle_deg"] = math.degrees(uncertainty["m11"] / abs(spread)) if spread else math.inf
     scales = [{"factor": 1, "dx": dx, "dy": dy, **{k: values[k] for k in FIVE}}]
     for k in SCALES[1:]:
-        if min(residual.shape) < 4 * (order + 3) * k:
+        if min(residual.shape) < 2 * order * k + 16:  # central D(D) reaches order*k points each way
             break
         coarse_fields = derivative_fields(residual, dx, dy, order=order, step=k, off_centre=False)
         coarse = _means(_products(residual, coarse_fields, theta))
