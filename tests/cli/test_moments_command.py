@@ -146,3 +146,13 @@ def test_a_tall_point_table(capsys, tmp_path):
     d = run_json(capsys, "moments", tmp_path / "grid.xyz")
     assert d["shape"] == [96, 128] and d["dx"] == pytest.approx(0.25) and d["source"]["format"] == "xyz"
     assert d["m02"] == pytest.approx(measure_heights(Z, 0.25).values["m02"], rel=1e-9)
+
+
+def test_an_instrument_file_without_the_extra(capsys, tmp_path, monkeypatch):
+    """SurfaceTopography absent (the import fails as if not installed): one line, exit 2."""
+    import sys
+
+    monkeypatch.setitem(sys.modules, "SurfaceTopography", None)
+    (tmp_path / "scan.sur").write_bytes(b"DIGITAL SURF")
+    code, out, err = run(capsys, "moments", tmp_path / "scan.sur")
+    assert code == 2 and out == "" and len(err.splitlines()) == 1 and "pip install '.[measure]'" in err

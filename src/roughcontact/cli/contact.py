@@ -168,7 +168,14 @@ def _tangential(args, surface, stiffness) -> tuple[dict, dict]:
 def _run_surface(args) -> dict[str, Any]:
     surface = _surface_from(args)
     summary = surface.summary()
-    return {**summary, "units": {k: SURFACE_UNITS[k] for k in summary}}
+    return {**summary, "units": {k: _in_unit(SURFACE_UNITS[k], args.moments_unit) for k in summary}}
+
+
+def _in_unit(text: str, unit: str | None) -> str:
+    """A unit text written with the length unit L, with the moments' unit where it is known."""
+    import re
+
+    return text if unit is None else re.sub(r"\bL\b", unit, text)
 
 
 def _contact(args, surface, compute, **law):
@@ -217,8 +224,9 @@ def _run_elastic(args) -> dict[str, Any]:
         "pressure_requested": extra["pressure_requested"],
         "tangential": tangential,
         "length_unit": args.moments_unit,
-        "units": dict(curves.units) | {"h": f"{args.moments_unit or 'L'} (the moments' length unit)",
-                                       "pressure_requested": "unit of E*"} | _kt_units(args),
+        "units": {k: _in_unit(v, args.moments_unit) for k, v in curves.units.items()}
+        | {"h": f"{args.moments_unit or 'L'} (the moments' length unit)", "pressure_requested": "unit of E*"}
+        | _kt_units(args),
         "model": curves.model,
         "hertz": curves.hertz,
         "method": curves.method,
@@ -264,7 +272,7 @@ def _run_elastoplastic(args) -> dict[str, Any]:
         "closure": args.closure or default_closure(args.psi, args.Y),
         "material": {"E_star": m.E_star, "Y": m.Y, "H": m.H, "yield_coefficient": m.yield_coefficient,
                      "c_h": m.c_h, "wp_over_wc": m.wp_over_wc, "K_v": m.K_v},
-        "units": {k: v for k, v in curves.units.items() if k in ("s", *fields)}
+        "units": {k: _in_unit(v, args.moments_unit) for k, v in curves.units.items() if k in ("s", *fields)}
         | {"psi": "1", "material": "stresses in the unit of E*", "h": f"{args.moments_unit or 'L'} (the moments' length unit)",
            "pressure_requested": "unit of E*"} | _kt_units(args),
         "model": "bgk-elastoplastic",
