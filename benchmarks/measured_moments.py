@@ -20,30 +20,20 @@ import numpy as np
 
 from roughcontact.statistics import SpectralMoments
 from roughcontact.statistics.measure import measure_heights
-from roughcontact.statistics.synthetic import synthetic_surface, window_moments
+from roughcontact.statistics.synthetic import dropout_mask, synthetic_surface, window_moments
 
 FIVE = ("m00", "m20", "m02", "m40", "m04")
 DX, ROWS, COLS = 0.25, slice(300, 700), slice(250, 762)
 
 
-def dropouts(shape, rng):
-    yy, xx = np.mgrid[0:shape[0], 0:shape[1]]
-    hole = rng.random(shape) < 0.01
-    for _ in range(40):
-        cy, cx, r = rng.integers(0, shape[0]), rng.integers(0, shape[1]), rng.uniform(2, 8)
-        hole |= (yy - cy) ** 2 + (xx - cx) ** 2 < r * r
-    return hole
-
-
 def rows():
-    rng = np.random.default_rng(3)
     for anisotropy in (10, 100):
         for lay in (0.0, 30.0, 45.0, 75.0):
             m = SpectralMoments(1.0, 1.0 / anisotropy, 1.0, 3.0 / anisotropy**2, 3.0)
             parent = synthetic_surface(m, (1201, 1201), DX, seed=7, lay_angle_deg=lay)
             z = parent[ROWS, COLS]
             ref = window_moments(parent, DX, rows=ROWS, cols=COLS)
-            hole = dropouts(z.shape, rng)
+            hole = dropout_mask(z.shape, seed=int(lay) + anisotropy)
             holed = np.where(hole, np.nan, z)
             ref_holed = window_moments(parent, DX, rows=ROWS, cols=COLS, mask=~hole)
             for name, zz, r, options in (("Hann periodogram (old default)", z, ref, {"estimator": "spectral"}),

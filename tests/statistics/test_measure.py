@@ -7,10 +7,8 @@ import numpy as np
 import pytest
 
 from roughcontact.statistics import SpectralMoments
-from roughcontact.statistics.derivatives import derivative_fields, first_derivative, stencil_weights
-from roughcontact.statistics.measure import (
-    MeasurementWarning, _spectral, measure_heights, measure_profiles, rotate_map,
-)
+from roughcontact.statistics.derivatives import derivative_fields
+from roughcontact.statistics.measure import _spectral, measure_heights, measure_profiles, rotate_map
 from roughcontact.statistics.synthetic import grid_moments, lay_frame_spectrum, synthetic_surface
 
 # rms slope ~3 (the unit check's warning is expected here: these tests are about the estimators)

@@ -10,7 +10,7 @@ import pytest
 
 from roughcontact.statistics import SpectralMoments
 from roughcontact.statistics.measure import _spectral, measure_heights
-from roughcontact.statistics.synthetic import synthetic_surface, window_moments
+from roughcontact.statistics.synthetic import dropout_mask, synthetic_surface, window_moments
 
 FIVE = ("m00", "m20", "m02", "m40", "m04")
 DX = 0.25  # µm; the across-lay rms wavenumber is 1/µm: 25 samples per rms wavelength
@@ -20,17 +20,6 @@ ROWS, COLS = slice(150, 550), slice(120, 632)  # a 400 x 512 window
 def surface(anisotropy):
     """m00 = 0.01 µm², slopes 0.1 across the lay, m02/m20 = anisotropy, alpha1 = alpha2 = 3."""
     return SpectralMoments(0.01, 0.01 / anisotropy, 0.01, 0.03 / anisotropy**2, 0.03)
-
-
-def dropouts(shape, seed):
-    """Optical-instrument-like dropouts: 40 patches of radius 2-8 samples and 1 % single points."""
-    rng = np.random.default_rng(seed)
-    yy, xx = np.mgrid[0:shape[0], 0:shape[1]]
-    hole = rng.random(shape) < 0.01
-    for _ in range(40):
-        cy, cx, r = rng.integers(0, shape[0]), rng.integers(0, shape[1]), rng.uniform(2, 8)
-        hole |= (yy - cy) ** 2 + (xx - cx) ** 2 < r * r
-    return hole
 
 
 def test_reference_is_parseval_on_the_whole_periodic_map():
@@ -51,7 +40,7 @@ def test_window_moments_within_two_percent_with_dropouts(anisotropy, lay):
     """Five moments within 2 %, the lay within 0.3°, on a window with ~3 % dropouts."""
     parent = synthetic_surface(surface(anisotropy), (701, 801), DX, seed=7, lay_angle_deg=lay)
     z = parent[ROWS, COLS].copy()
-    hole = dropouts(z.shape, seed=int(lay) + anisotropy)
+    hole = dropout_mask(z.shape, seed=int(lay) + anisotropy)  # 40 patches of radius 2-8, 1 % points
     z[hole] = np.nan
     ref = window_moments(parent, DX, rows=ROWS, cols=COLS, mask=~hole)
     got = measure_heights(z, DX)

@@ -8,7 +8,7 @@ from pathlib import Path
 from typing import Any
 
 from . import (
-    CLIError, EP_DEFAULTS, _MOMENTS, _add_modulus_options, _real, effective_modulus_from,
+    CLIError, EP_DEFAULTS, _add_modulus_options, _real, effective_modulus_from,
 )
 
 __all__ = ["add_commands"]

@@ -3,7 +3,6 @@
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 from typing import Any
 
@@ -33,14 +32,11 @@ def add_command(sub, parents) -> None:
 
 
 def _load(path: str) -> dict:
-    file = Path(path)
-    if not file.is_file():
-        raise CLIError(f"no such file: {path}")
-    try:
-        data = json.loads(file.read_text())
-    except (json.JSONDecodeError, UnicodeDecodeError) as exc:
-        raise CLIError(f"{path}: not a JSON file ({exc})") from None
-    missing = [k for k in ("s", "area_fraction", "pressure", "stiffness") if k not in data]
+    from ..readers.moments_file import read_json
+
+    data = read_json(path)
+    needed = ("s", "area_fraction", "pressure", "stiffness")
+    missing = [k for k in needed if k not in data] if isinstance(data, dict) else list(needed)
     if missing:
         raise CLIError(f"{path}: not a contact result (no {', '.join(missing)}): write it with "
                        "roughcontact elastic/elastoplastic --json")

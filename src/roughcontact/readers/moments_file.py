@@ -15,7 +15,7 @@ from pathlib import Path
 from ..statistics.surface import SpectralMoments
 from . import lengths
 
-__all__ = ["load_moments", "moments_from_mapping", "moments_in_unit"]
+__all__ = ["load_moments", "moments_from_mapping", "moments_in_unit", "read_json"]
 
 _FIVE = ("m00", "m20", "m02", "m40", "m04")
 
@@ -47,16 +47,20 @@ def moments_from_mapping(mapping, *, where: str = "moments") -> tuple[SpectralMo
     return moments, unit
 
 
-def load_moments(path) -> tuple[SpectralMoments, str | None]:
-    """(SpectralMoments, unit or None) from a JSON file (module docstring)."""
+def read_json(path, what: str = "file"):
+    """The content of a JSON file; ValueError (one line) if it is missing or not JSON."""
     file = Path(path)
     if not file.is_file():
-        raise ValueError(f"no such moments file: {path}")
+        raise ValueError(f"no such {what}: {path}")
     try:
-        data = json.loads(file.read_text())
+        return json.loads(file.read_text())
     except (json.JSONDecodeError, UnicodeDecodeError) as exc:
         raise ValueError(f"{path}: not a JSON file ({exc})") from None
-    return moments_from_mapping(data, where=str(path))
+
+
+def load_moments(path) -> tuple[SpectralMoments, str | None]:
+    """(SpectralMoments, unit or None) from a JSON file (module docstring)."""
+    return moments_from_mapping(read_json(path, "moments file"), where=str(path))
 
 
 def moments_in_unit(moments: SpectralMoments, unit_from: str, unit_to: str) -> SpectralMoments:

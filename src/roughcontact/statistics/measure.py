@@ -161,6 +161,17 @@ class MeasuredMoments:
         }
 
 
+def _checked_options(dx, dy, estimator, window, detrend, order) -> tuple[float, float]:
+    """(dx, dy) as positive lengths (dy defaults to dx); ValueError for an unknown option."""
+    dx = positive("dx", dx)
+    dy = dx if dy is None else positive("dy", dy)
+    choice("estimator", estimator, ESTIMATORS)
+    choice("window", window, WINDOWS)
+    choice("detrend", detrend, DETRENDS)
+    choice("order", order, ORDERS)
+    return dx, dy
+
+
 def _ratio(a, b):
     return a / b if b else math.nan
 
@@ -314,13 +325,8 @@ def measure_heights(z, dx, dy=None, *, estimator="fd", order=6, window="hann", d
     Warnings (:class:`MeasurementWarning`, also in ``notes``): moments outside the model (μ ≤ 0,
     large m22), curvatures not resolved, an rms slope that suggests a unit mismatch, no lay.
     """
-    dx = positive("dx", dx)
-    dy = dx if dy is None else positive("dy", dy)
-    choice("estimator", estimator, ESTIMATORS)
-    choice("window", window, WINDOWS)
-    choice("detrend", detrend, DETRENDS)
+    dx, dy = _checked_options(dx, dy, estimator, window, detrend, order)
     choice("fill", fill, FILLS)
-    choice("order", order, ORDERS)
     z = _heights(z, 2)
     missing = missing_fraction(z)
     if missing > MAX_MISSING:
@@ -465,12 +471,7 @@ def measure_profiles(along, across, dx, dy=None, *, estimator="fd", order=6, win
     (Nayak 1971; the paper's eq. (12) counts their zero crossings and extrema). ``along``,
     ``across``: 1-d arrays or 2-d arrays of several profiles (one per row); m00 is the mean of
     both directions' estimates."""
-    dx = positive("dx", dx)
-    dy = dx if dy is None else positive("dy", dy)
-    choice("estimator", estimator, ESTIMATORS)
-    choice("window", window, WINDOWS)
-    choice("detrend", detrend, DETRENDS)
-    choice("order", order, ORDERS)
+    dx, dy = _checked_options(dx, dy, estimator, window, detrend, order)
     profiles = []
     for p in (along, across):
         a = _heights(np.atleast_2d(np.asarray(p, dtype=float)), 2) if np.ndim(p) in (1, 2) else _heights(p, 2)

@@ -38,7 +38,7 @@ from scipy.special import gammaln
 
 from .surface import SpectralMoments
 
-__all__ = ["synthetic_surface", "lay_frame_spectrum", "grid_moments", "window_moments"]
+__all__ = ["synthetic_surface", "lay_frame_spectrum", "grid_moments", "window_moments", "dropout_mask"]
 
 
 def _gg_alpha(n: float) -> float:
@@ -216,3 +216,18 @@ def window_moments(parent, dx: float, dy: float | None = None, *, rows: slice, c
              "m22": (zac, zac), "m31": (zaa, zac), "m13": (zcc, zac)}
     return {"m00": m00, **{k: float(np.mean(a * b)) for k, (a, b) in pairs.items()},
             "lay_angle_deg": math.degrees(theta)}
+
+
+def dropout_mask(shape: tuple[int, int], *, seed: int, patches: int = 40, radius=(2.0, 8.0),
+                 single: float = 0.01) -> np.ndarray:
+    """A boolean mask (True = not measured) of optical-instrument-like dropouts: ``patches`` discs
+    of radii uniform in ``radius`` [samples] at random centres, and a fraction ``single`` of
+    isolated points; to test estimators on maps with missing data (set them to NaN)."""
+    _check_grid(shape, 1.0, 1.0)
+    rng = np.random.default_rng(seed)
+    yy, xx = np.mgrid[0:shape[0], 0:shape[1]]
+    hole = rng.random(shape) < single
+    for _ in range(int(patches)):
+        cy, cx, r = rng.integers(0, shape[0]), rng.integers(0, shape[1]), rng.uniform(*radius)
+        hole |= (yy - cy) ** 2 + (xx - cx) ** 2 < r * r
+    return hole
