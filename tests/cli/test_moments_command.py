@@ -59,6 +59,10 @@ def test_an_x3p_file(cli_run, cli_json, tmp_path):
     d = cli_json("moments", tmp_path / "a.x3p")
     assert d["source"]["format"] == "x3p" and d["source"]["units_in_file"] == {"xy": "m", "z": "m"}
     assert d["m40"] == pytest.approx(measure_heights(Z, 0.25).values["m40"], rel=1e-6)
+    # --dx is in --unit (not in the file's metres) unless --xy-unit says otherwise, and overrides it
+    given = cli_json("moments", tmp_path / "a.x3p", "--dx", "0.5")
+    assert given["dx"] == 0.5 and "overrides the file's spacing" in given["source"]["notes"][0]
+    assert cli_json("moments", tmp_path / "a.x3p", "--dx", "500", "--xy-unit", "nm")["dx"] == pytest.approx(0.5)
 
 
 def test_heights_in_nm_with_dx_in_um(cli_run, cli_json, tmp_path):

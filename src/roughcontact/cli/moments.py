@@ -30,10 +30,12 @@ def add_command(sub, parents) -> None:
     p.add_argument("--unit", "--length-unit", dest="unit", default="um", metavar="UNIT",
                    help="length unit of the output moments and of the map (default um)")
     p.add_argument("--dx", type=_real, default=None, metavar="DX",
-                   help="sampling interval along x (columns) in --xy-unit; needed when the file has none")
+                   help="sampling interval along x (columns), in --xy-unit if given, else in --unit; needed when "
+                   "the file has none (overrides the file's)")
     p.add_argument("--dy", type=_real, default=None, metavar="DY", help="sampling interval along y (rows) (default dx)")
     p.add_argument("--xy-unit", dest="xy_unit", default=None, metavar="UNIT",
-                   help="unit of the lateral coordinates and of --dx (default: the file's, else --unit)")
+                   help="unit of --dx and of a file's lateral coordinates that state none (default: the file's, "
+                   "else --unit)")
     p.add_argument("--z-unit", dest="z_unit", default=None, metavar="UNIT",
                    help="unit of the heights (default: the file's, else the lateral unit)")
     p.add_argument("--z-scale", dest="z_scale", type=_real, default=1.0, metavar="F",
@@ -72,22 +74,26 @@ def _map_in_unit(args):
     for name, given, in_file in (("--xy-unit", args.xy_unit, found.xy_unit), ("--z-unit", args.z_unit, found.z_unit)):
         if given and in_file and normalise(given) != in_file:
             notes.append(f"{name} {given} overrides the file's {in_file}")
-    dx, dy = found.dx, found.dy
-    if args.dx is not None:
-        if dx is not None and abs(args.dx / dx - 1.0) > 1e-6:
-            notes.append(f"--dx {args.dx:g} overrides the file's spacing {dx:g} {xy_unit}")
-        dx = args.dx
-        dy = args.dy if args.dy is not None else dx
-    elif args.dy is not None:
-        dy = args.dy
-    if dx is None:
-        raise CLIError(f"{args.file} does not give the sampling interval: pass --dx (in --xy-unit, default {xy_unit})")
-    fz, fxy = factor(z_unit, unit) * args.z_scale, factor(xy_unit, unit)
+    # --dx, --dy are in --xy-unit if given, else in --unit; the file's spacing in its own unit
+    given_unit = normalise(args.xy_unit) if args.xy_unit else unit
+    if args.dx is not None or args.dy is not None:
+        if args.dx is None:
+            raise CLIError("--dy needs --dx")
+        if found.dx is not None:
+            notes.append(f"--dx {args.dx:g} {given_unit} overrides the file's spacing {found.dx:g} {xy_unit}")
+        f = factor(given_unit, unit)
+        dx, dy = args.dx * f, (args.dy if args.dy is not None else args.dx) * f
+    elif found.dx is None:
+        raise CLIError(f"{args.file} does not give the sampling interval: pass --dx (in --xy-unit, default {unit})")
+    else:
+        f = factor(xy_unit, unit)
+        dx, dy = found.dx * f, (found.dy if found.dy is not None else found.dx) * f
+    fz = factor(z_unit, unit) * args.z_scale
     assumed = found.z_unit is None and args.z_unit is None
     source = {"file": str(args.file), "format": found.source, "notes": notes,
               "units_in_file": {"xy": found.xy_unit, "z": found.z_unit},
               "units_read": {"xy": xy_unit, "z": z_unit, "assumed": assumed}}
-    return found.heights * fz, dx * fxy, (dy if dy is not None else dx) * fxy, source
+    return found.heights * fz, dx, dy, source
 
 
 def _run_moments(args) -> dict[str, Any]:

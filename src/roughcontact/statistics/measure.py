@@ -43,7 +43,6 @@ from __future__ import annotations
 import math
 import warnings
 from dataclasses import dataclass, replace
-from functools import cached_property
 
 import numpy as np
 
@@ -120,14 +119,17 @@ class MeasuredMoments:
         """The nine lay-frame moments (alias of ``values``)."""
         return self.values
 
-    @cached_property
-    def moments(self) -> SpectralMoments | None:
-        """The five moments as the model's :class:`SpectralMoments`, or None where they lie
-        outside it (a moment ≤ 0, or μ ≤ 0: a narrow-band surface): see :meth:`validity`."""
+    @property
+    def moments(self) -> SpectralMoments:
+        """The five moments as the model's :class:`SpectralMoments`; ValueError naming the
+        condition where they lie outside it (a moment ≤ 0, or μ ≤ 0: a narrow-band surface) —
+        ``values`` and :meth:`validity` have them either way."""
         try:
             return SpectralMoments(*(self.values[k] for k in FIVE))
-        except ValueError:
-            return None
+        except ValueError as exc:
+            raise ValueError(f"the measured moments are outside the model of the paper: {exc} (they are in "
+                             "MeasuredMoments.values; a narrow-band surface, e.g. a few dominant wavelengths, "
+                             "has mu <= 0)") from None
 
     def anisotropy(self) -> dict[str, float]:
         """Distance from the model's assumptions: m22/√(m40 m04), m31/√(m40 m22), m13/√(m04 m22)

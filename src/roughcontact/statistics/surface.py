@@ -163,14 +163,10 @@ class SpectralMoments:
     def from_heights(cls, z, dx, dy=None, **options) -> "SpectralMoments":
         """The moments in the lay frame measured on a height map z[i, j] at x = j·dx, y = i·dy
         [L] (:func:`roughcontact.statistics.measure.measure_heights`, which also reports the lay
-        angle, m11, m22, scales, uncertainties and the estimator; options: estimator, order, window,
-        detrend, lay_angle_deg, fill). ValueError if the measured moments lie outside the model."""
+        angle, m11, m22 and the estimator; options: estimator, window, detrend, lay_angle_deg)."""
         from .measure import measure_heights
 
-        measured = measure_heights(z, dx, dy, **options)
-        if measured.moments is None:
-            return SpectralMoments(*(measured.values[k] for k in _MOMENT_NAMES))  # raises, naming why
-        return measured.moments
+        return measure_heights(z, dx, dy, **options).moments
 
     @classmethod
     def from_profiles(cls, along, across, dx, dy=None, **options) -> "SpectralMoments":
