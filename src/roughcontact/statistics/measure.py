@@ -93,7 +93,9 @@ class MeasuredMoments:
     m11_map : E[z_x z_y] in the map frame, before rotation [–].
     uncertainty : standard uncertainties of ``values`` and of ``lay_angle_deg`` (batch means), or
         None (spectral estimator).
-    scales : per sampling interval factor k in SCALES, {"factor", "dx", "dy", m00 … m04}.
+    scales : per sampling interval factor k in SCALES, {"factor", "dx", "dy", m00 … m04,
+        "fine_over_this": m20 … m04 at dx over those at k dx, both over the points where the
+        coarser stencils fit}.
     missing_fraction, fill : the fraction of the map not measured, and how it was filled.
     estimator, order, window, detrend, dx, dy : how they were measured (dx, dy [L]).
     notes : the warnings issued (MeasurementWarning), as text.
@@ -151,9 +153,8 @@ class MeasuredMoments:
         mu = 1.0 - m["m20"] ** 2 / (m["m00"] * m["m40"]) - m["m02"] ** 2 / (m["m00"] * m["m04"]) if positive_ else None
         rho2 = m["m22"] ** 2 / (m["m40"] * m["m04"]) if positive_ else None
         ratios = {}
-        if len(self.scales) > 1:
-            fine, coarse = self.scales[0], self.scales[1]
-            ratios = {k: _ratio(fine[k], coarse[k]) for k in ("m40", "m04")}
+        if len(self.scales) > 1:  # dx against 2 dx over the same points
+            ratios = {k: self.scales[1]["fine_over_this"][k] for k in ("m40", "m04")}
         resolved = all(abs(r - 1.0) <= RESOLUTION_TOL for r in ratios.values()) if ratios else None
         return {
             "model_applies": bool(positive_ and mu > 0 and rho2 <= M22_LIMIT and resolved is not False),
@@ -390,8 +391,13 @@ def _measure_fd(residual, dx, dy, order, lay_angle_deg):
         if min(residual.shape) < 2 * order * k + 16:  # central D(D) reaches order*k points each way
             break
         coarse_fields = derivative_fields(residual, dx, dy, order=order, step=k, off_centre=False)
-        coarse = _means(_products(residual, coarse_fields, theta))
-        scales.append({"factor": k, "dx": k * dx, "dy": k * dy, **{n: coarse[n] for n in FIVE}})
+        coarse_products = _products(residual, coarse_fields, theta)
+        coarse = _means(coarse_products)
+        # the fine moments over the same points: the ratio shows the scale, not the points left out
+        same = {n: float(np.mean(products[n][np.isfinite(coarse_products[n])]) / coarse[n]) if coarse[n] else math.nan
+                for n in FIVE[1:]}
+        scales.append({"factor": k, "dx": k * dx, "dy": k * dy, **{n: coarse[n] for n in FIVE},
+                       "fine_over_this": same})
     return values, theta, in_map["m11"], uncertainty, scales
 
 
@@ -405,7 +411,8 @@ def _measure_spectral(residual, dx, dy, window, lay_angle_deg):
         if min(coarse.shape) < 16:
             break
         c = _spectral(coarse - coarse.mean(), k * dx, k * dy, window, theta)
-        scales.append({"factor": k, "dx": k * dx, "dy": k * dy, **{n: c[n] for n in FIVE}})
+        scales.append({"factor": k, "dx": k * dx, "dy": k * dy, **{n: c[n] for n in FIVE},
+                       "fine_over_this": {n: _ratio(values[n], c[n]) for n in FIVE[1:]}})
     return values, theta, in_map["m11"], None, scales
 
 
