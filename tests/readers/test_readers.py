@@ -109,12 +109,16 @@ def test_gsf_orientation_units_and_nan(tmp_path):
         read_height_map(tmp_path / "b.gsf")
 
 
-def test_x3p_through_surfacetopography(tmp_path):
+@pytest.mark.parametrize("fmt", ["x3p", "gwy", "nc"])
+def test_instrument_formats_through_surfacetopography(tmp_path, fmt):
+    """Files SurfaceTopography writes (ISO 25178-72 .x3p, Gwyddion .gwy, its NetCDF) read back with
+    their orientation, spacing and units."""
     st = pytest.importorskip("SurfaceTopography")
     # SurfaceTopography's heights are h[ix, iy]; ours z[i, j] = h[j, i]
-    st.Topography(Z.T.copy(), physical_sizes=(9 * 0.5, 7 * 0.25), unit="um").to_x3p(str(tmp_path / "a.x3p"))
-    m = read_height_map(tmp_path / "a.x3p")
-    assert m.source == "x3p" and m.z_unit == "m" and m.xy_unit == "m"
+    topography = st.Topography(Z.T.copy(), physical_sizes=(9 * 0.5, 7 * 0.25), unit="um")
+    getattr(topography, {"x3p": "to_x3p", "gwy": "to_gwy", "nc": "to_netcdf"}[fmt])(str(tmp_path / f"a.{fmt}"))
+    m = read_height_map(tmp_path / f"a.{fmt}")
+    assert m.source == fmt and m.z_unit in ("m", "um") and m.xy_unit == m.z_unit
     um = m.in_unit("um")
     np.testing.assert_allclose(um.heights, Z, rtol=1e-6)
     assert (um.dx, um.dy) == (pytest.approx(0.5), pytest.approx(0.25))
