@@ -23,11 +23,13 @@ TESTS = Path(__file__).resolve().parent
 LAYERS = [
     {"validation", "files"},
     {"statistics"},
+    {"readers"},
     {"asperity"},
     {"integrals"},
     {"contact"},
     {"interface"},
     {"fe"},
+    {"plots"},
     {"paper"},
     {"io", "warmup", "cli", "__main__", "__init__"},
 ]

@@ -9,7 +9,7 @@ import yaml
 
 from roughcontact import io
 from roughcontact.paper import plots
-from roughcontact.paper.style import parameter_label
+from roughcontact.plots.style import parameter_label
 
 #: the paper's markers (Fig. 13 caption): m00 = 0.0625 triangles, 0.3125 crosses, 0.625 squares
 MARKERS = {0.0625: "^", 0.3125: "x", 0.625: "s"}
