@@ -39,6 +39,7 @@ from __future__ import annotations
 
 import math
 import time
+import warnings
 from dataclasses import dataclass, field
 from typing import Callable, Sequence
 
@@ -262,6 +263,20 @@ def _symmetric(D) -> bool:
     return bool(np.allclose(D, np.swapaxes(D, -1, -2), rtol=1e-12, atol=0.0))
 
 
+def _dense_solve(A, b, symmetric: bool):
+    """A x = b for a dense A that may be overwritten: Cholesky when symmetric (LinAlgError when
+    not positive definite), else LU (LinAlgError on a zero pivot); no condition estimate (half
+    the time of scipy.linalg.solve on 2000 unknowns: the Newton loop checks its steps)."""
+    if symmetric:
+        return la.cho_solve(la.cho_factor(A, overwrite_a=True, check_finite=False), b, check_finite=False)
+    with warnings.catch_warnings():  # a zero pivot is raised just below, not warned about
+        warnings.simplefilter("ignore", la.LinAlgWarning)
+        lu, piv = la.lu_factor(A, overwrite_a=True, check_finite=False)
+    if not np.all(np.diagonal(lu)):
+        raise np.linalg.LinAlgError("singular matrix (a zero pivot)")
+    return la.lu_solve((lu, piv), b, check_finite=False)
+
+
 def _ordered(model: ContactModel, K, dofs) -> np.ndarray:
     """A fill-reducing order of ``dofs`` (indices of the free dofs): nested dissection by the
     node coordinates when the model has them, else reverse Cuthill–McKee (:mod:`.ordering`)."""
@@ -332,7 +347,7 @@ class _Condensed:
         x = self.lu.solve(r[self.order])
         x_I = x[self.n_R:]
         A = self.S + interface_tangent(_restricted(points, self.B_I), D).toarray()
-        du_I = la.solve(A, self.S_alpha @ x_I, assume_a="pos" if _symmetric(D) else "gen", check_finite=True)
+        du_I = _dense_solve(A, self.S_alpha @ x_I, _symmetric(D))
         correction = np.zeros(self.n)
         correction[self.n_R:] = self.S_alpha @ (du_I - x_I)
         du = np.empty(self.n)
