@@ -33,7 +33,7 @@ RUNS = {
     "punch-quadratic-b": ("punch", {"case": "b", "geometry": {"family": "quadratic"}}),
     "punch-cubic-c": ("punch", {"case": "c", "geometry": {"family": "cubic"}}),
 }
-FAST = ("beam-quadratic-1-free", "punch-quadratic-b")
+FAST = ("beam-quadratic-1-free",)
 
 
 def run(name: str) -> dict:
