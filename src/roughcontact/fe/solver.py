@@ -18,21 +18,41 @@ Convergence (all three, checked after every iteration):
                 move far as a rigid body, K u ≈ 0 while |K| |u| is large);
 * increment:    ‖Δu‖_∞ ≤ displacement_rtol·‖u − u_n‖_∞ + displacement_atol [mm] (last correction);
 * active set:   no interface point changed status (stick / slip / open) in the last iteration.
-Non-convergence (iteration limit, a non-finite residual, a singular tangent or a closure beyond
-the heavy end of a tabulated law) halves the step back to the last converged state (the step
-doubles again after every converged sub-step); after ``max_cutbacks`` halvings
+Non-convergence (iteration limit, a non-finite residual, a singular tangent, or a trial closure
+beyond even the extrapolated tail of a tabulated law) halves the step back to the last converged
+state (the step doubles again after every converged sub-step); after ``max_cutbacks`` halvings
 :class:`ConvergenceError` names the increment, the load level and the residual. Never a silently
 wrong answer: every converged increment records its residual history and the equilibrium error
 (applied load vs integrated interface pressure).
 
-Linear solves: ``"condensed"`` (default) factors the bulk once, condenses it onto the interface
-dofs (dense Schur complement S = K_II − K_IR K_RR⁻¹ K_RI) and per iteration solves the dense
-(S + K_int) system (Cholesky when the interface tangent is symmetric) plus one or two sparse
-back-substitutions; ``"sparse"`` refactors the whole sparse tangent (SuperLU, ordering of
-Aᵀ + A) every iteration. The Newton loop runs with ``blas_threads`` BLAS threads (1: on
-these dense systems of a few hundred to a few thousand unknowns a second thread costs more
-than it gains, and on a loaded machine far more). ``make bench-fe`` measures both strategies
-(results/benchmarks/fe_linear_solvers.md; environment-notes.md records the choice).
+The law's range. Trial states (the iterations) see the tabulated law continued past its heavy
+end by its tangent (``InterfaceMaterial.respond(..., extrapolate=True)``,
+:meth:`~roughcontact.interface.InterfaceLaw.extrapolated`): from a soft seated state the first
+Newton step of a stiffening law overshoots far past the table, and refusing that iterate stopped
+a block on a base loaded from zero at its first increment (issue 23). The range is judged on
+the converged state: a converged state past the heavy end raises :class:`LawRangeError` (a
+ConvergenceError) naming the increment, the level, the pressure reached and p_max.
+
+Line search (``line_search``, on by default). The full Newton step is taken when it does not
+increase ‖r‖; otherwise the step is shortened by the minimiser of the quadratic through
+‖r‖²(0), its slope −2‖r‖²(0) along the Newton direction and ‖r‖²(α) (within [α/10, α/2]) until
+‖r(α)‖ ≤ (1 − 10⁻⁴ α) ‖r(0)‖, at most 8 times (then the best step is taken). A step into the
+region past even the tail counts as an infinite residual. It changes the path, not the
+converged answer (tests: the beam's and punch's results unchanged to 1e-13).
+
+Linear solves (``linear_solver``): ``"condensed"`` condenses the bulk onto the interface dofs I:
+one SuperLU factorisation of K + αP_I with the bulk dofs first (nested dissection by the node
+coordinates, :mod:`.ordering`) and I last gives the dense Schur complement
+S = K_II − K_IR K_RR⁻¹ K_RI from its trailing factor blocks; each iteration then factors the dense
+(S + K_int) (Cholesky when the interface tangent is symmetric, LU otherwise) and does two sparse
+solves (:class:`_Condensed`). ``"sparse"`` refactors the whole sparse tangent every iteration
+(SuperLU in the same nested-dissection order). ``"auto"`` (default) is "condensed" up to
+AUTO_CONDENSED_MAX = 6000 interface dofs and "sparse" beyond: the dense factorisation grows as
+n_I³/3 (0.5 s at 3750 on one core, 7 s at 8000 — a sparse factorisation of the 65 k-dof
+benchmark costs 20 s) and S needs 8 n_I² bytes. The Newton loop runs with ``blas_threads`` BLAS
+threads (1: on these dense systems a second thread costs more than it gains, and on a loaded
+machine far more). ``make bench-fe`` measures the strategies and the engine against CalculiX
+(docs/performance.md, "FE engine"; environment-notes.md records the choice of solver).
 """
 
 from __future__ import annotations
