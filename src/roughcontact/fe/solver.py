@@ -455,11 +455,13 @@ def _newton(model, solver, opts, level, u_n, state_n, guess):
 
 def _line_search(evaluate, u, free, du, norm0, enabled):
     """The Newton step u + α du (module docstring, "Line search"): α = 1 unless the residual
-    norm grows; then backtracking on ‖r(u + α du)‖ with the minimiser of the quadratic through
-    ‖r‖²(0), its slope −2‖r‖²(0) (the Newton direction) and ‖r‖²(α), kept within [α/10, α/2],
-    until ‖r‖ ≤ (1 − 10⁻⁴ α) ‖r(0)‖ or _BACKTRACKS halvings. Returns (u, α du, evaluation)."""
+    norm grows; then backtracking on φ(α) = ‖r(u + α du)‖² with the minimiser of the quadratic
+    through φ(0), φ'(0) = −2φ(0) (the Newton direction) and φ(α), kept within [α/10, α/2], until
+    ‖r‖ ≤ (1 − 10⁻⁴ α) ‖r(0)‖; after _BACKTRACKS reductions the best step tried is taken.
+    Returns (u, α du, evaluation)."""
     trial = u.copy()
     alpha, best = 1.0, None
+    phi0 = norm0 ** 2
     for k in range(_BACKTRACKS + 1):
         trial[free] = u[free] + alpha * du
         try:
@@ -471,8 +473,11 @@ def _line_search(evaluate, u, free, du, norm0, enabled):
             best = (alpha, ev)
         if not enabled or norm <= (1.0 if k == 0 else 1.0 - 1e-4 * alpha) * norm0:
             break
-        ratio = norm0 ** 2 / (norm ** 2 + norm0 ** 2) if math.isfinite(norm) else 0.0
+        phi = norm ** 2
+        ratio = phi0 * alpha / (phi - phi0 + 2.0 * phi0 * alpha) if math.isfinite(phi) else 0.0
         alpha *= min(max(ratio, 0.1), 0.5)
+    else:  # no step met the criterion: the best one tried
+        ev = None
     if ev is None:
         if best is None:
             raise _Failed(norm0, "every step length leads past the extrapolated tail of the interface law")
