@@ -17,7 +17,7 @@ import engine_reference as ref  # noqa: E402
 RECORDED = json.loads(ref.DATA.read_text())
 
 
-@pytest.mark.parametrize("name", [pytest.param(n, marks=() if n in ref.FAST else pytest.mark.slow) for n in ref.RUNS])
+@pytest.mark.parametrize("name", [*ref.FAST, *(pytest.param(n, marks=pytest.mark.slow) for n in ref.SLOW)])
 def test_results_unchanged(name):
     now = ref.run(name)
     worst = ref.compare(RECORDED[name], now)
