@@ -69,12 +69,13 @@ def _load() -> float:
 
 def measure(cmd, cwd, timeout: float, env=None) -> dict:
     """Run ``cmd`` in ``cwd``: its wall and CPU seconds and peak RSS [MB] (os.wait4: this child
-    alone), exit code (None after ``timeout`` s: killed), output, the load before and after."""
+    alone), exit code (None after ``timeout`` s: killed), standard output (the JSON of the
+    engine's runs) and the tail of standard error, the load before and after."""
     load_before = _load()
     killed = []
-    with tempfile.TemporaryFile("w+") as log:
+    with tempfile.TemporaryFile("w+") as log, tempfile.TemporaryFile("w+") as err:
         t0 = time.perf_counter()
-        proc = subprocess.Popen(cmd, cwd=cwd, stdout=log, stderr=subprocess.STDOUT, text=True, env=env)
+        proc = subprocess.Popen(cmd, cwd=cwd, stdout=log, stderr=err, text=True, env=env)
         timer = threading.Timer(timeout, lambda: (killed.append(True), proc.kill()))
         timer.start()
         _, status, usage = os.wait4(proc.pid, 0)
@@ -82,10 +83,11 @@ def measure(cmd, cwd, timeout: float, env=None) -> dict:
         timer.cancel()
         proc.returncode = os.waitstatus_to_exitcode(status)  # reaped here, not by Popen
         log.seek(0)
-        out = log.read()
+        err.seek(0)
+        out, stderr = log.read(), err.read()
     return {"exit": None if killed else proc.returncode, "timeout": timeout if killed else None,
             "wall_s": wall, "cpu_s": usage.ru_utime + usage.ru_stime, "peak_rss_mb": usage.ru_maxrss / 1024.0,
-            "output": out, "load_before": load_before, "load_after": _load()}
+            "output": out, "stderr": stderr[-1000:], "load_before": load_before, "load_after": _load()}
 
 
 # ---------------------------------------------------------------------------------------------
