@@ -26,7 +26,7 @@ LAYERS = [
     {"asperity"},
     {"integrals"},
     {"contact"},
-    {"interface"},
+    {"interface", "bem"},
     {"fe"},
     {"paper"},
     {"io", "warmup", "cli", "__main__", "__init__"},
