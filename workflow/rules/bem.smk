@@ -30,12 +30,18 @@ def bem_runs():
             for fam in BEM["families"] for n, g in BEM_GRIDS.items() for seed in range(g["seeds"])]
 
 
+def bem_max_pressure(grid, family):
+    """The largest W/A0 solved on a grid: one number, or one per family."""
+    mp = grid["max_pressure"]
+    return float(mp[family]) if isinstance(mp, dict) else float(mp)
+
+
 def bem_run_job(family, n, seed):
     """What one BEM job computes (and records as provenance)."""
     g = BEM_GRIDS[int(n)]
     return {"family": family, "moments": dict(BEM["families"][family]), "n": int(n), "seed": int(seed),
             "hurst": BEM["hurst"], "k_high": BEM["k_high"], "E_star": BEM["E_star"],
-            "pressures": [p for p in BEM["pressures"] if p <= g["max_pressure"]],
+            "pressures": [p for p in BEM["pressures"] if p <= bem_max_pressure(g, family)],
             "solver": dict(BEM["solver"]), "units": dict(config["units"])}
 
 

@@ -171,6 +171,12 @@ def figure(rows: Sequence[Mapping], seed_ratios: Mapping[tuple, np.ndarray], *, 
     return fig
 
 
+def _max_text(max_pressure) -> str:
+    if isinstance(max_pressure, Mapping):
+        return ", ".join(f"{v:g} ({k})" for k, v in max_pressure.items())
+    return f"{max_pressure:g}"
+
+
 def _range_text(ranges, stress_unit):
     if not ranges:
         return "nowhere on the ladder"
@@ -197,7 +203,7 @@ def render_markdown(rows, summits, checks: Sequence[Check], *, scale: str, grids
     S = units["stress"]
     L = units["length"]
     lines = ["# The model against the BEM on the same surfaces (target bem)", "",
-             f"Scale `{scale}`: grids " + ", ".join(f"{n}² ({g['seeds']} seeds, W/A0 ≤ {g['max_pressure']:g} {S})"
+             f"Scale `{scale}`: grids " + ", ".join(f"{n}² ({g['seeds']} seeds, W/A0 ≤ {_max_text(g['max_pressure'])} {S})"
                                                     for n, g in sorted(grids.items())) +
              f"; E* = {E_star:g} {S}; lengths in {L}. Elastic, frictionless, periodic, load-controlled BEM "
              "(ContactMechanics, constrained conjugate gradients); the model is the Bush–Gibson–Keogh "
