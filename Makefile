@@ -35,7 +35,7 @@ $(PY):
 	$(PYTHON) -m venv $(VENV)
 
 $(STAMP): pyproject.toml | $(PY)
-	$(PY) -m pip install --quiet --editable '.[workflow,test,docs,cluster,measure]'
+	$(PY) -m pip install --quiet --editable '.[workflow,test,docs,cluster,measure,bem]'
 	@touch $@
 
 venv: $(STAMP)

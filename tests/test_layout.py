@@ -27,7 +27,7 @@ LAYERS = [
     {"asperity"},
     {"integrals"},
     {"contact"},
-    {"interface"},
+    {"interface", "bem"},
     {"fe"},
     {"plots"},
     {"paper"},
