@@ -14,7 +14,7 @@ import numpy as np
 from ..bem.compare import holding_ranges, kappa, ladder_stiffness, model_at_pressures, seed_mean
 from ..statistics.summits import gaussian_summit_statistics, measure_summits
 from ..statistics.surface import SpectralMoments
-from . import style
+from ..plots import style
 from .verify import NOT_REPRODUCED, REPRODUCED, Check, relative_error
 
 __all__ = ["SUMMARY_COLUMNS", "summary_rows", "summary_dataset", "resolution_rows", "summit_rows", "check_rows", "figure", "render_markdown",
