@@ -11,7 +11,7 @@ import xarray as xr
 from roughcontact import io
 from roughcontact.bem.surfaces import BandLimitedSurface
 from roughcontact.paper import bem as report
-from roughcontact.paper import style
+from roughcontact.plots import style
 from roughcontact.paper.verify import checks_to_csv
 from roughcontact.statistics.surface import SpectralMoments
 
