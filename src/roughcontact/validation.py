@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 
-__all__ = ["positive", "choice", "instance", "separations"]
+__all__ = ["positive", "integer", "choice", "instance", "separations"]
 
 
 def positive(name: str, value, *, allow_zero: bool = False) -> float:
@@ -19,6 +19,15 @@ def positive(name: str, value, *, allow_zero: bool = False) -> float:
     if not math.isfinite(v) or v < 0.0 or (v == 0.0 and not allow_zero):
         raise ValueError(f"{name} must be finite and {'>= 0' if allow_zero else 'positive'}, got {value!r}")
     return v
+
+
+def integer(name: str, value, minimum: int, maximum: int) -> int:
+    """``value`` as an int in [minimum, maximum] (an integral number, not a bool or a float)."""
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
+        raise ValueError(f"{name} must be an integer in [{minimum}, {maximum}], got {value!r}")
+    if not minimum <= int(value) <= maximum:
+        raise ValueError(f"{name} must lie in [{minimum}, {maximum}], got {value!r}")
+    return int(value)
 
 
 def choice(name: str, value, choices) -> None:

@@ -111,3 +111,19 @@ def test_beam_agrees_with_the_engine(tmp_path):
 def test_skipped_scene_says_why():
     md = calculix.render_markdown([], [], {}, "", skipped_reason="ccx is not installed here")
     assert "**Skipped**: ccx is not installed here" in md and "calculix-ccx" in md
+
+
+def test_node_prints_stop_at_the_next_print():
+    """A *CONTACT PRINT after the *NODE PRINT has 4-column rows too: they are not displacements."""
+    dat = """
+ displacements (vx,vy,vz) for set BOTTOM and time  0.1000000E+01
+
+        11  0.000000E+00  0.000000E+00 -4.328515E-04
+        12  1.428571E-06  0.000000E+00 -4.328515E-04
+
+ contact stress (slave node,press,tang1,tang2) for all contact elements and time 0.1000000E+01
+
+        11  1.000000E+00  0.000000E+00  0.000000E+00
+"""
+    (t, rows), = calculix.node_prints(dat, "BOTTOM")
+    assert t == 1.0 and sorted(rows) == [11, 12] and rows[11][2] == -4.328515e-4

@@ -269,6 +269,8 @@ FE_TITLES = {
     "fe_beam_study": "Example 9.1: tangential restraint, E* and mesh convergence",
     "table5": "Table 5 and section 9.2: the punch with orthotropic hardening friction (example 9.2)",
     "calculix": "The exported pressure-overclosure table in CalculiX (optional tool ccx; issue 14)",
+    "fe_beam_anchor": "Example 9.1 against a 2D plane-stress solution by a separate code (engine-free anchor)",
+    "fe_punch_anchor": "Example 9.2 against its equilibrium, friction limit, dissipation and bound (engine-free anchor)",
 }
 
 
@@ -279,7 +281,8 @@ def drawing_targets():
 
 
 def fe_checks():
-    return [f"results/verify/{name}.checks.csv" for name in ("table4", "fe_beam_study", "table5", "calculix")]
+    return [f"results/verify/{name}.checks.csv" for name in ("table4", "fe_beam_study", "table5", "calculix",
+                                                             "fe_beam_anchor", "fe_punch_anchor")]
 
 
 FE_PUNCH = config["fe"]["punch"]

@@ -19,8 +19,9 @@ A thin layer: parse and validate the arguments, call the library, print the resu
     roughcontact plot RESULT.json [RESULT.json ...] -o FILE.png|pdf [--x separation|pressure]
     roughcontact export --format abaqus|calculix|csv --m00 M ... --m04 M --E-star E
                          [--law elastic|elastoplastic --psi P] --pressure-range PMIN PMAX
-                         [--rtol 1e-3] [--seating-pressure P0] [--length-scale F] [--stress-scale G]
-                         [--mu MU --kt-over-kn A] [-o FILE] [--json]
+                         [--rtol 1e-3] [--seating-pressure P0] [--moments-unit um] [--length-unit NAME]
+                         [--length-scale F] [--stress-scale G] [--mu MU --kt-over-kn A [--kt-at P]]
+                         [-o FILE] [--json]
 
 The contact commands (elastic, elastoplastic) take --s, --h (length unit) or --pressure (the
 separation solved, load control); E* as --E-star or --E1 --nu1 [--E2 --nu2] (eq. 42); a second
@@ -28,6 +29,10 @@ rough surface with --second-surface M00 M20 M02 M40 M04 (moments summed). Wherev
 moments are asked, --moments FILE.json reads them (and their unit) from a file, two files for two
 rough surfaces. Warnings raised during a computation are shown in the text output and as the JSON
 list "warnings".
+
+Files a command writes (export -o, moments --save-rotated, fe --vtu) are options of type
+:func:`output_file` (checked at parsing, before any computation) written through :func:`writing`
+(atomically, under exactly the name given).
 
 Exit codes: 0 success; 2 bad input (one line on stderr, "roughcontact: error: ...");
 1 a computed value is not finite. Any other exception is a bug and propagates (traceback).
@@ -46,16 +51,20 @@ of that payload.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import math
+import os
 import re
 import sys
 import warnings
-from typing import Any, Callable, Sequence
+from pathlib import Path
+from typing import Any, Callable, Iterator, Sequence
 
 from .. import __version__
+from ..files import atomic_path
 
-__all__ = ["main", "build_parser", "CLIError"]
+__all__ = ["main", "build_parser", "CLIError", "output_file", "writing"]
 
 PROG = "roughcontact"
 _MOMENTS = ("m00", "m20", "m02", "m40", "m04")
@@ -132,6 +141,47 @@ def _real(text: str) -> float:
         return float(text)
     except ValueError:
         raise argparse.ArgumentTypeError(f"must be a real number, got {text!r}") from None
+
+
+# ---------------------------------------------------------------------------------------
+# output files: every command that writes a file declares its option with type=output_file
+# (checked when the arguments are parsed, before any computation) and writes through writing()
+# ---------------------------------------------------------------------------------------
+def output_file(text: str) -> Path:
+    """argparse type of an option naming a file to write: a non-empty name, not a directory nor
+    another existing non-regular file (/dev/null, a pipe: the atomic rename would replace it),
+    in an existing writable directory (nothing is created). A bad name is a parse error: one
+    line, exit 2, before the command computes anything."""
+    if not text.strip():
+        raise argparse.ArgumentTypeError("an empty file name")
+    path = Path(text)
+    if path.is_dir() or text.endswith(os.sep):
+        raise argparse.ArgumentTypeError(f"{text} is a directory, not a file")
+    if path.exists() and not path.is_file():  # a device or a pipe: renaming onto it would replace it
+        raise argparse.ArgumentTypeError(f"{text} is not a regular file (without the option the command prints)")
+    parent = path.parent
+    if not parent.is_dir():
+        raise argparse.ArgumentTypeError(f"{text}: no such directory {str(parent)!r} (it is not created)")
+    if not os.access(parent, os.W_OK | os.X_OK):
+        raise argparse.ArgumentTypeError(f"{text}: the directory {str(parent)!r} is not writable")
+    return path
+
+
+@contextlib.contextmanager
+def writing(path: Path, option: str, *, atomic: bool = True) -> Iterator[Path]:
+    """Yield a temporary path next to ``path`` to write; renamed onto ``path`` when the block
+    succeeds (``roughcontact.files.atomic_path``: never a half-written file under the final
+    name, the mode the umask gives). ``atomic=False`` yields ``path`` itself, for a library
+    writer that writes atomically on its own (e.g. ``fe.vtu``). An OSError is one line
+    (CLIError, exit 2) naming the option."""
+    try:
+        if atomic:
+            with atomic_path(path) as tmp:
+                yield tmp
+        else:
+            yield path
+    except OSError as exc:
+        raise CLIError(f"{option} {path}: cannot write it ({exc.strerror or exc})") from None
 
 
 # ---------------------------------------------------------------------------------------

@@ -102,12 +102,12 @@ def _add_mindlin(sub, parents) -> None:
 def _surface_from(args) -> SpectralMoments:
     """The moments of the command line (--m00 … --m04, or --moments FILE [FILE2]), plus those of
     --second-surface where given (the sum: two rough surfaces as one on a flat,
-    SpectralMoments.combined_with). Sets ``args.moments_unit`` to the files' length unit (None
-    when not known)."""
+    SpectralMoments.combined_with). Sets ``args.moments_unit`` to the files' length unit where they
+    state it, else keeps the command's own ``--moments-unit`` (export), else None (not known)."""
     files = getattr(args, "moments_files", None)
     given = [name for name in _MOMENTS if getattr(args, name) is not None]
     second = getattr(args, "second_surface", None)
-    args.moments_unit = None
+    args.moments_unit = getattr(args, "moments_unit", None)
     if files:
         if given:
             raise CLIError(f"--moments replaces --{' --'.join(given)}: give the moments one way")
@@ -135,7 +135,8 @@ def _surfaces_from_files(args, files, second) -> SpectralMoments:
         surface = surface.combined_with(other)
     if second is not None:
         surface = surface.combined_with(SpectralMoments(*second))
-    args.moments_unit = unit
+    if unit is not None:
+        args.moments_unit = unit
     return surface
 
 

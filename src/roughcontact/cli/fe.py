@@ -19,12 +19,11 @@ a run that does not converge exits 1 naming the increment and the residual.
 from __future__ import annotations
 
 import sys
-from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from . import CLIError, _MOMENTS, _real
+from . import CLIError, _MOMENTS, _real, output_file, writing
 
 __all__ = ["add_commands"]
 
@@ -74,7 +73,7 @@ def _add_beam(sub, parents) -> None:
     p.add_argument("--increments", type=_int, default=16, metavar="N", help="load increments (16)")
     p.add_argument("--n-x", dest="n_x", type=_int, default=25, metavar="N", help="elements along the half beam")
     p.add_argument("--n-z", dest="n_z", type=_int, default=6, metavar="N", help="elements over the height")
-    p.add_argument("--vtu", type=Path, default=None, metavar="FILE",
+    p.add_argument("--vtu", type=output_file, default=None, metavar="FILE",
                    help="write the mesh with displacements to FILE and the interface points to "
                    "FILE's stem + '_interface.vtu'")
     p.add_argument("--quiet", action="store_true", help="no progress lines on stderr")
@@ -100,7 +99,8 @@ def _run_beam(args) -> dict[str, Any]:
         from ..fe.beam import interface_fields
         from ..fe.vtu import write_solution
 
-        write_solution(args.vtu, result.mesh, result.solution.final.u, interface_fields(result))
+        with writing(args.vtu, "--vtu", atomic=False) as path:  # fe.vtu writes both files atomically
+            write_solution(path, result.mesh, result.solution.final.u, interface_fields(result))
     payload = result.summary()
     payload.update(law=args.law, psi=args.psi, tangential=args.tangential, mu=args.mu, E_star=args.E_star,
                    moments={"m00": run["m00"], **moments}, vtu=str(args.vtu) if args.vtu else None)
@@ -143,7 +143,7 @@ def _add_punch(sub, parents) -> None:
                    help="how k_T enters (93): incremental (k_T at the end of the increment), incremental-start, "
                    "or secant (a total elastic law)")
     p.add_argument("--increments", type=_int, default=16, metavar="N", help="loading and unloading increments (16)")
-    p.add_argument("--vtu", type=Path, default=None, metavar="FILE",
+    p.add_argument("--vtu", type=output_file, default=None, metavar="FILE",
                    help="write both bodies with displacements (maximum load) to FILE and the contact points "
                    "to FILE's stem + '_interface.vtu'")
     p.add_argument("--quiet", action="store_true", help="no progress lines on stderr")
@@ -169,7 +169,8 @@ def _run_punch(args) -> dict[str, Any]:
     mu = mu_max(args.case)
     points = result.slip_directions()
     if args.vtu is not None:
-        result.write_vtu(args.vtu)
+        with writing(args.vtu, "--vtu", atomic=False) as path:
+            result.write_vtu(path)
     summary = summary_of(result)
     return {
         "dissipation_quarter_Nmm": dissipation(result, whole=False),

@@ -8,7 +8,7 @@ from pathlib import Path
 from typing import Any
 
 from . import (
-    CLIError, EP_DEFAULTS, _add_modulus_options, _real, effective_modulus_from,
+    CLIError, EP_DEFAULTS, _add_modulus_options, _real, effective_modulus_from, output_file, writing,
 )
 
 __all__ = ["add_commands"]
@@ -51,26 +51,37 @@ def _add_export(sub, parents) -> None:
     p.add_argument("--rtol", type=_real, default=1e-3, help="relative error of the table against the law (default 1e-3)")
     p.add_argument("--seating-pressure", dest="p0", type=_real, default=None, metavar="P0",
                    help="overclosure zero at this pressure (unit of E*); default: at the mean planes")
-    p.add_argument("--length-scale", dest="length_scale", type=_real, default=1.0, metavar="F",
-                   help="multiply overclosures by F (e.g. 1e-3: moments in um, FE model in mm)")
-    p.add_argument("--length-unit", dest="length_unit", default="L", metavar="NAME", help="name of the output length unit")
+    p.add_argument("--moments-unit", dest="moments_unit", default="um", metavar="NAME",
+                   help="length unit of the moments (default um); with a known --length-unit (m, mm, um, nm) the "
+                   "overclosures are converted")
+    p.add_argument("--length-unit", dest="length_unit", default=None, metavar="NAME",
+                   help="output length unit (default: the moments' unit); m, mm, um, nm are converted from "
+                   "--moments-unit, any other name needs --length-scale")
+    p.add_argument("--length-scale", dest="length_scale", type=_real, default=None, metavar="F",
+                   help="multiply overclosures by F (e.g. 1e-3: moments in um, FE model in mm); must agree with the "
+                   "units where both are known")
     p.add_argument("--stress-scale", dest="stress_scale", type=_real, default=1.0, metavar="G",
                    help="multiply pressures by G (e.g. 1e6: E* in N/mm^2 = MPa, FE model in Pa)")
     p.add_argument("--stress-unit", dest="stress_unit", default="unit of E*", metavar="NAME",
                    help="name of the output stress unit")
     p.add_argument("--mu", type=_real, default=None, help="Coulomb friction coefficient: adds a *FRICTION block")
     p.add_argument("--kt-over-kn", dest="kt_over_kn", type=_real, default=None, metavar="A",
-                   help="k_T/k_N for the stick stiffness k_T(p0) = A k_N(p0) (with --mu)")
+                   help="k_T/k_N: the stick stiffness k_T(P) = A k_N(P) (with --mu)")
+    p.add_argument("--kt-at", dest="kt_at", type=_real, default=None, metavar="P",
+                   help="the pressure P (unit of E*) of k_T(P) (with --mu; default: where k_N is the geometric mean of "
+                   "its values at the ends of --pressure-range, the constant with the smallest largest factor error "
+                   "over the range); the k_T(p) range is printed")
     p.add_argument("--max-rows", dest="max_rows", type=int, default=None, metavar="N",
                    help="fail if more rows are needed (calculix: 200 always)")
-    p.add_argument("-o", "--output", default=None, metavar="FILE", help="write the table to FILE")
+    p.add_argument("-o", "--output", type=output_file, default=None, metavar="FILE", help="write the table to FILE")
     p.set_defaults(func=_run_export, render=_render_export)
 
 
 def _run_export(args) -> dict[str, Any]:
     from ..contact.closures import resolve_material
     from ..contact.validity import relay_warnings
-    from ..interface.export import CALCULIX_MAX_ROWS, format_table, friction_block, overclosure_table
+    from ..interface.export import (CALCULIX_MAX_ROWS, format_table, friction_block, overclosure_table,
+                                    stick_stiffness, unit_name)
     from .contact import _surface_from
 
     surface = _surface_from(args)
@@ -86,8 +97,10 @@ def _run_export(args) -> dict[str, Any]:
         raise CLIError("--mu and --kt-over-kn go together (the *FRICTION block needs both)")
     if args.mu is not None and args.fmt == "csv":
         raise CLIError("--mu: the csv format has no friction block")
-    if args.mu is not None and args.p0 is None:
-        raise CLIError("--mu needs --seating-pressure (k_T is taken at p0)")
+    if args.kt_at is not None and args.mu is None:
+        raise CLIError("--kt-at goes with --mu and --kt-over-kn (the *FRICTION block)")
+    length_scale, length_unit = export_length_units(args, args.moments_unit)
+    unit_name("--stress-unit", args.stress_unit)
     max_rows = CALCULIX_MAX_ROWS if args.fmt == "calculix" else args.max_rows
     if args.fmt == "calculix" and args.max_rows is not None:
         max_rows = min(args.max_rows, CALCULIX_MAX_ROWS)
@@ -96,29 +109,56 @@ def _run_export(args) -> dict[str, Any]:
         table = overclosure_table(surface, pressure_range=args.pressure_range, rtol=args.rtol,
                                   reference="mean-plane" if args.p0 is None else "seating",
                                   seating_pressure=args.p0, max_rows=max_rows, **law)
-        scales = {"length_scale": args.length_scale, "stress_scale": args.stress_scale}
-        friction = "" if args.mu is None else friction_block(table, args.fmt, args.mu, args.kt_over_kn, **scales)
-        text = format_table(table, args.fmt, length_unit=args.length_unit, stress_unit=args.stress_unit,
-                            friction=friction, **scales)
-    if args.output:
-        Path(args.output).write_text(text)
+        scales = {"length_scale": length_scale, "stress_scale": args.stress_scale}
+        friction, stick = "", None
+        if args.mu is not None:
+            friction = friction_block(table, args.fmt, args.mu, args.kt_over_kn, kt_at=args.kt_at, **scales)
+            stick = stick_stiffness(table, args.kt_over_kn, args.kt_at, **scales)
+        text = format_table(table, args.fmt, length_unit=length_unit, stress_unit=args.stress_unit,
+                            moments_unit=args.moments_unit, friction=friction, **scales)
+    if args.output is not None:
+        with writing(args.output, "-o") as tmp:
+            tmp.write_text(text)
     return {
         "format": args.fmt,
         **table.summary(),
         "law": args.law,
         "moments": surface.as_dict(),
         "moments_unit": args.moments_unit,
-        "length_scale": args.length_scale, "stress_scale": args.stress_scale,
-        "units": {"pressure": args.stress_unit, "overclosure": args.length_unit,
-                  "h_ref": "the moments' length unit", "zero_pressure_overclosure": "the moments' length unit"},
-        "friction": None if args.mu is None else {"mu": args.mu, "kT_over_kN": args.kt_over_kn},
+        "length_scale": length_scale, "stress_scale": args.stress_scale,
+        "units": {"pressure": args.stress_unit, "overclosure": length_unit, "moments": args.moments_unit,
+                  "h_ref": args.moments_unit, "zero_pressure_overclosure": args.moments_unit,
+                  "k_T": f"{args.stress_unit}/{length_unit}"},
+        "friction": None if stick is None else {
+            "mu": args.mu, "kT_over_kN": args.kt_over_kn, "kt_at": stick["pressure"], "k_T": stick["k_T"],
+            "k_T_range": [list(r) for r in stick["range"]], "k_T_factor": stick["factor"],
+            "kt_at_default": args.kt_at is None},
         "cannot_express": CANNOT_EXPRESS[args.fmt],
-        "output": args.output,
-        "table": [[float(p) * args.stress_scale, float(c) * args.length_scale]
+        "output": None if args.output is None else str(args.output),
+        "table": [[float(p) * args.stress_scale, float(c) * length_scale]
                   for p, c in zip(table.pressure, table.overclosure)],
         "text": text,
         "warnings": relay_warnings(caught),
     }
+
+
+def export_length_units(args, moments_unit: str) -> tuple[float, str]:
+    """(length scale, output length unit) of the export from --length-unit and --length-scale
+    and the moments' unit (``--moments-unit``; a moments file that states its unit overrides it):
+    known units (interface.export.LENGTH_UNITS) are converted, and a --length-scale must agree;
+    another name needs --length-scale; without --length-unit the output is in the moments' unit."""
+    from ..interface.export import length_scale_between, unit_name
+
+    unit_name("--moments-unit", moments_unit)
+    if args.length_unit is None:
+        if args.length_scale is not None:
+            raise CLIError("--length-scale needs --length-unit (the name of the unit it converts to)")
+        return 1.0, moments_unit
+    unit_name("--length-unit", args.length_unit)
+    try:
+        return length_scale_between(moments_unit, args.length_unit, args.length_scale), args.length_unit
+    except ValueError as exc:
+        raise CLIError(f"--length-unit {args.length_unit}: {exc}") from None
 
 
 def _render_export(payload: dict[str, Any]) -> str:
@@ -129,5 +169,13 @@ def _render_export(payload: dict[str, Any]) -> str:
                f"{payload['rtol']:g} of the {payload['level']} law (max measured {payload['max_error']:.3g}) for "
                f"pressures {payload['pressure_range'][0]:g} ... {payload['pressure_range'][1]:g}; reference "
                f"{payload['reference']}")
+        f = payload["friction"]
+        if f is not None:
+            (p_lo, k_lo), (p_hi, k_hi) = f["k_T_range"]
+            kt = payload["units"]["k_T"]
+            out += (f"\nfriction: mu = {f['mu']:g}, k_T = {f['k_T']:.6g} {kt} at p = {f['kt_at']:.6g}"
+                    f"{' (default: the geometric middle of k_T over the range)' if f['kt_at_default'] else ''}; "
+                    f"the law's k_T(p) runs from {k_lo:.4g} at p = {p_lo:.4g} to {k_hi:.4g} at p = {p_hi:.4g} "
+                    f"(factor {f['k_T_factor']:.3g})")
         out += "".join(f"\nnot expressed: {m}" for m in payload["cannot_express"])
     return out + "".join(f"\nwarning: {m}" for m in payload["warnings"])

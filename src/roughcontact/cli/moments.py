@@ -6,9 +6,10 @@ from __future__ import annotations
 
 import math
 import warnings
+from pathlib import Path
 from typing import Any
 
-from . import CLIError, _MOMENTS, _real
+from . import CLIError, _MOMENTS, _real, output_file, writing
 
 __all__ = ["add_command"]
 
@@ -54,9 +55,11 @@ def add_command(sub, parents) -> None:
                    help="missing points: none (the fd stencils avoid them; default) or harmonic (Laplace fill)")
     p.add_argument("--lay-angle", dest="lay_angle", type=_real, default=None, metavar="DEG",
                    help="the lay angle if known [deg from the map's x axis]; default: found (m11 = 0)")
-    p.add_argument("--save-rotated", dest="save_rotated", default=None, metavar="FILE.npy",
-                   help="write the map rotated into the lay frame (x along the lay; NaN outside the map)")
-    p.add_argument("--plot", default=None, metavar="FILE.png",
+    p.add_argument("--save-rotated", dest="save_rotated", type=output_file, default=None, metavar="FILE",
+                   help="write the map rotated into the lay frame (x along the lay; NaN outside the map) to FILE: "
+                   "NumPy .npy, or a text grid (.csv comma-separated, any other name whitespace-separated) "
+                   "that `roughcontact moments` reads back")
+    p.add_argument("--plot", type=output_file, default=None, metavar="FILE.png",
                    help="draw the moments against the sampling interval, with their uncertainties (png or pdf)")
     p.set_defaults(func=_run_moments, render=_render_moments)
 
@@ -127,10 +130,8 @@ def _run_moments(args) -> dict[str, Any]:
         "missing_fraction": r.missing_fraction, "dx": r.dx, "dy": r.dy, "shape": list(z.shape),
         "source": source, "units": units,
     }
-    if args.save_rotated:
-        import numpy as np
-
-        np.save(args.save_rotated, rotate_map(z, r.dx, r.dy, r.lay_angle_deg))
+    if args.save_rotated is not None:
+        save_height_map(args.save_rotated, rotate_map(z, r.dx, r.dy, r.lay_angle_deg), "--save-rotated")
     if args.plot:
         from ..plots import moments_against_scale, save_figure
 
@@ -138,9 +139,23 @@ def _run_moments(args) -> dict[str, Any]:
             save_figure(moments_against_scale(_json_safe(payload)), args.plot)
         except ImportError as exc:
             raise CLIError(str(exc)) from None
-        payload["plot"] = args.plot
+        payload["plot"] = str(args.plot)
     payload["warnings"] = relay_warnings(caught)
     return _json_safe(payload)
+
+
+def save_height_map(path: Path, z, option: str) -> None:
+    """Write a height map to exactly ``path`` (atomically): .npy in NumPy's format, any other
+    name as a text grid that :func:`roughcontact.readers.read_height_map` reads back (.csv
+    comma-separated, else whitespace; NaN written as "nan")."""
+    import numpy as np
+
+    with writing(path, option) as tmp:
+        if path.suffix.lower() == ".npy":
+            with open(tmp, "wb") as f:  # a file object: np.save appends no ".npy" to the name
+                np.save(f, z, allow_pickle=False)
+        else:
+            np.savetxt(tmp, z, delimiter="," if path.suffix.lower() == ".csv" else " ", fmt="%.17g")
 
 
 def _json_safe(value):

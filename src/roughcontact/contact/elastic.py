@@ -26,7 +26,7 @@ from ..integrals.production import normal_moment, polar_elastic_integrals
 from ..integrals.rules import settings_for, theta_rule
 from ..statistics.gw import EquivalentGW
 from ..statistics.surface import SpectralMoments, gaussian_bearing_area
-from ..validation import choice, instance, positive, separations
+from ..validation import choice, instance, integer, positive, separations
 from .validity import VALIDITY_MODES, check_bandwidth, check_validity
 from .units import attrs, check_units
 
@@ -35,6 +35,12 @@ __all__ = ["ContactCurves", "elastic_contact", "bearing_area", "bearing_area_rat
 MODELS = ("bgk", "gw")
 HERTZ = ("exact", "paper")
 METHODS = ("production", "reference")
+#: the reference's working digits: at dps = 8 it is within 1.2e-9 of dps = 20 (Table 1 surface,
+#: s = 1, 3; 2e-11 at dps = 10), still inside the "plot" preset's 1e-8 (benchmarks/speed_vs_error.py
+#: times mpmath at 8, 12, 20); below, the error grows about tenfold per digit unchecked (7.5e-7 at
+#: 5, 9e-2 at 0; mpmath takes any number, even negative); above 60 digits a run takes hours. The
+#: workflow's references use 10 or more (config/schema.yaml reference_dps)
+REFERENCE_DPS = (8, 60)
 S_MAX_RATIO = 37.0  # ½ erfc(37/√2) ≈ 6e-300, the last s where A_B is a normal double
 
 
@@ -132,7 +138,8 @@ def elastic_contact(
              "gw": McCool's equivalent Greenwood–Williamson model (Tables 1–2).
     hertz    "exact": exact Hertz functions, exact inversion of (27);
              "paper": the paper's numerics, (33) clipped + polynomials (36)–(39).
-    method   "production" (numba) or "reference" (mpmath at ``dps`` digits).
+    method   "production" (numba) or "reference" (mpmath at ``dps`` digits, an integer in
+             [8, 60]: :data:`REFERENCE_DPS`).
     accuracy production preset name ("table" ≤1e-13, "plot" ≤1e-8 relative to the mpmath
              reference; measured in docs/performance.md) — see integrals.rules.PRESETS.
              Below μ = validity.MU_ACCURATE the promise is not tested: AccuracyWarning.
@@ -147,6 +154,7 @@ def elastic_contact(
     choice("hertz", hertz, HERTZ)
     choice("method", method, METHODS)
     choice("validity", validity, VALIDITY_MODES)
+    dps = integer("dps", dps, *REFERENCE_DPS)
     if model == "bgk":
         check_bandwidth(surface.mu, method)
 
@@ -195,8 +203,10 @@ def elastic_contact(
 
 
 def bearing_area(surface: SpectralMoments, s, *, method="production", accuracy="plot", dps=20):
-    """A_G(s): summit-model bearing area fraction, eqs. (22)/(24) (D_sum·E[πab])."""
+    """A_G(s): summit-model bearing area fraction, eqs. (22)/(24) (D_sum·E[πab]); ``dps`` as in
+    :func:`elastic_contact`."""
     instance("surface", surface, SpectralMoments)
+    dps = integer("dps", dps, *REFERENCE_DPS)
     s_arr = separations(s)
     choice("method", method, METHODS)
     pre = ElasticPrefactors.of(surface)

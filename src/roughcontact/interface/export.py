@@ -18,8 +18,17 @@ Conventions
   then p_min … p_max. Between consecutive rows from p_min on, the relative error
   |p_table(c) − p(c)|/p(c) is at most ``rtol`` (checked at 15 interior points of every row
   interval; the row spacing is the largest that passes, found by bisection);
-* outside the table FE codes hold the last slope (Abaqus) or the last pressure (CalculiX):
-  choose p_max far above any pressure the model reaches;
+* outside the table the codes differ: CalculiX holds the last pressure (a larger load finds no
+  equilibrium: "increment size smaller than minimum", tests/paper/test_calculix_deck.py),
+  Abaqus continues the last segment's slope (Abaqus manual, *SURFACE BEHAVIOR): neither is the
+  law, so choose p_max far above any pressure the model reaches; the header says which;
+* units: overclosures are written in the output unit, ``length_scale`` times the moments'
+  unit (:func:`length_scale_between` derives it from the two unit names where both are known,
+  :data:`LENGTH_UNITS`); unit names go into the header and are checked (:func:`unit_name`: no
+  control characters or line breaks, nothing that could start a keyword line);
+* friction: the codes take one stick stiffness; :func:`friction_block` writes k_T = a k_N at a
+  chosen pressure (default :func:`representative_pressure`) and states the range of k_T(p) over
+  the table's pressures;
 * what a table cannot express: k_T(p) (the stick stiffness varies with p through k_N; codes
   take one constant or one elastic slip), orthotropic or hardening friction (section 8.1),
   unloading along another path (the elasto-plastic law is exported as a loading curve).
@@ -28,6 +37,7 @@ Conventions
 from __future__ import annotations
 
 import math
+import unicodedata
 from dataclasses import dataclass
 
 import numpy as np
@@ -38,7 +48,8 @@ from ..validation import choice, instance, positive
 from .normal_law import NormalLawTable
 
 __all__ = ["REFERENCES", "FORMATS", "OverclosureTable", "overclosure_table", "format_table",
-           "friction_block", "parse_table", "CALCULIX_MAX_ROWS"]
+           "friction_block", "parse_table", "CALCULIX_MAX_ROWS", "LENGTH_UNITS", "BEYOND_LAST_ROW",
+           "unit_name", "length_scale_between", "representative_pressure", "stick_stiffness"]
 
 REFERENCES = ("seating", "mean-plane")
 FORMATS = ("abaqus", "calculix", "csv")
@@ -51,6 +62,56 @@ _CHECK = np.linspace(0.0, 1.0, 17)[1:-1]
 _MARGIN = 0.95
 #: 20-character fields (CalculiX reads 20): 13 significant digits
 _FMT = "{:.12e}"
+#: length units the export converts between without a stated scale, in metres
+LENGTH_UNITS = {"m": 1.0, "mm": 1e-3, "um": 1e-6, "µm": 1e-6, "μm": 1e-6, "micron": 1e-6, "nm": 1e-9}
+#: what each target code does with a pressure beyond the last row (module docstring)
+BEYOND_LAST_ROW = {
+    "calculix": "beyond the last row CalculiX holds the last pressure (a larger load finds no equilibrium)",
+    "abaqus": "beyond the last row Abaqus continues the last segment's slope (not the law)",
+    "csv": "beyond the last row CalculiX holds the last pressure, Abaqus continues the last slope",
+}
+#: longest unit name accepted (a name, not a sentence)
+_MAX_UNIT_NAME = 40
+
+
+def unit_name(option: str, name) -> str:
+    """A unit name checked for the header of a deck: a string of at most 40 characters without
+    control characters or line breaks (a line break would start a line of its own — in Abaqus
+    or CalculiX a live keyword such as ``*INCLUDE``) and not starting with ``*``. ValueError
+    naming ``option`` otherwise."""
+    if not isinstance(name, str) or not name.strip():
+        raise ValueError(f"{option}: a unit name must be a non-empty string, got {name!r}")
+    bad = [c for c in name if unicodedata.category(c) in ("Cc", "Cf", "Cs", "Co", "Cn", "Zl", "Zp")]
+    if bad:
+        raise ValueError(f"{option}: a unit name may not contain control characters or line breaks, got {name!r}")
+    if name.lstrip().startswith("*") or len(name) > _MAX_UNIT_NAME:
+        raise ValueError(f"{option}: a unit name (at most {_MAX_UNIT_NAME} characters, not starting with '*'), "
+                         f"got {name!r}")
+    return name
+
+
+def length_scale_between(moments_unit: str, output_unit: str, length_scale=None) -> float:
+    """The factor taking overclosures from the moments' unit to the output unit.
+
+    Both units in :data:`LENGTH_UNITS`: their ratio (e.g. um → mm: 1e-3); a ``length_scale``
+    given as well must equal it (ValueError otherwise: a µm table in an mm deck is 1000 × off).
+    Otherwise ``length_scale`` as given, or 1 when the two names are the same; ValueError when
+    the names differ and nothing says how to convert."""
+    unit_name("moments unit", moments_unit)
+    unit_name("output length unit", output_unit)
+    given = None if length_scale is None else positive("length_scale", length_scale)
+    if moments_unit in LENGTH_UNITS and output_unit in LENGTH_UNITS:
+        factor = LENGTH_UNITS[moments_unit] / LENGTH_UNITS[output_unit]
+        if given is not None and not math.isclose(given, factor, rel_tol=1e-9):
+            raise ValueError(f"length scale {given:g} contradicts the units: {moments_unit} -> {output_unit} is "
+                             f"{factor:g} (give the right scale, or none)")
+        return factor
+    if given is not None:
+        return given
+    if moments_unit == output_unit:
+        return 1.0
+    raise ValueError(f"cannot convert {moments_unit!r} to {output_unit!r}: give the length scale (units known: "
+                     f"{', '.join(LENGTH_UNITS)})")
 
 
 @dataclass(frozen=True, eq=False)
@@ -83,7 +144,8 @@ class OverclosureTable:
 
     def interpolate(self, overclosure):
         """The FE code's piecewise-linear pressure at overclosures c [L] (zero below the first
-        row, the last pressure beyond the last as CalculiX holds it)."""
+        row, the last pressure beyond the last as CalculiX holds it; Abaqus would continue the
+        last slope)."""
         return np.interp(overclosure, self.overclosure, self.pressure, left=0.0)
 
     def summary(self) -> dict:
@@ -189,13 +251,18 @@ def _rows(table, length_scale, stress_scale):
 
 
 def format_table(table: OverclosureTable, fmt: str, *, length_scale=1.0, stress_scale=1.0,
-                 length_unit="L", stress_unit="unit of E*", friction: str = "") -> str:
+                 length_unit="L", stress_unit="unit of E*", moments_unit="L", friction: str = "") -> str:
     """The table in the syntax of ``fmt`` ("abaqus", "calculix": ``*SURFACE BEHAVIOR,
     PRESSURE-OVERCLOSURE=TABULAR`` with one ``pressure, overclosure`` pair a line; "csv": a
     header, then ``pressure,overclosure``). Overclosures are multiplied by ``length_scale``
-    (e.g. 1e-3 for µm → mm), pressures by ``stress_scale``; the unit names go in the comment.
+    (e.g. 1e-3 for µm → mm, :func:`length_scale_between`), pressures by ``stress_scale``; the
+    unit names (checked by :func:`unit_name`) go in the comment, with what the code does beyond
+    the last row (:data:`BEYOND_LAST_ROW`).
     ``friction``: a block from :func:`friction_block` to append (abaqus, calculix)."""
     choice("format", fmt, FORMATS)
+    unit_name("length_unit", length_unit)
+    unit_name("stress_unit", stress_unit)
+    unit_name("moments_unit", moments_unit)
     if fmt == "calculix" and table.n_rows > CALCULIX_MAX_ROWS:
         raise ValueError(f"CalculiX resamples tables of more than {CALCULIX_MAX_ROWS} rows; this one "
                          f"has {table.n_rows}: raise rtol or narrow the pressure range")
@@ -204,12 +271,13 @@ def format_table(table: OverclosureTable, fmt: str, *, length_scale=1.0, stress_
            if table.reference == "seating" else "the mean planes (c = -h)")
     about = [
         f"roughcontact pressure-overclosure table: {table.law.level} law, E* = {table.law.E_star:.8g}",
-        f"moments: " + ", ".join(f"{k} = {v:.8g}" for k, v in table.law.surface.as_dict().items()),
+        f"moments (length unit {moments_unit}): "
+        + ", ".join(f"{k} = {v:.8g}" for k, v in table.law.surface.as_dict().items()),
         f"pressure [{stress_unit}], overclosure [{length_unit}] (positive closes), zero at {ref}",
         f"within rtol = {table.rtol:g} of the law for pressures {table.pressure_range[0] * stress_scale:.6g}"
-        f" ... {table.pressure_range[1] * stress_scale:.6g} (max measured {table.max_error:.3g});"
-        " first row: zero pressure on the law's tangent at the light end",
-        "beyond the last row the code extrapolates: keep every pressure of the model far below it",
+        f" ... {table.pressure_range[1] * stress_scale:.6g} (max measured {table.max_error:.3g})",
+        "first row: zero pressure on the law's tangent at the light end",
+        f"{BEYOND_LAST_ROW[fmt]}:", "keep every pressure of the model far below the last row",
     ]
     if fmt == "csv":
         lines = [f"# {a}" for a in about] + ["pressure,overclosure"]
@@ -222,26 +290,67 @@ def format_table(table: OverclosureTable, fmt: str, *, length_scale=1.0, stress_
     return "\n".join(lines) + "\n"
 
 
-def friction_block(table: OverclosureTable, fmt: str, mu, kT_over_kN, *, length_scale=1.0,
+def _law_at_pressure(table: OverclosureTable, p: float) -> float:
+    """k_N = dp/dc [unit of E* per L] of the table's law at the pressure p."""
+    return float(table.law.evaluate(table.law.separation_at(p))[1])
+
+
+def representative_pressure(table: OverclosureTable) -> float:
+    """The default pressure of the stick stiffness: where k_N(p) equals √(k_N(p_min) k_N(p_max))
+    over the table's pressure range. A code keeps k_T constant while the law's k_T = a k_N(p)
+    grows with p (about in proportion); the constant with the smallest largest factor error over
+    [p_min, p_max] is the geometric mean of the ends' values (k_N is monotone), and this is the
+    pressure where the law has it."""
+    lo, hi = table.pressure_range
+    target = math.sqrt(_law_at_pressure(table, lo) * _law_at_pressure(table, hi))
+    a, b = math.log(lo), math.log(hi)
+    for _ in range(80):  # bisection in ln p: k_N increases with p
+        mid = 0.5 * (a + b)
+        if _law_at_pressure(table, math.exp(mid)) < target:
+            a = mid
+        else:
+            b = mid
+        if b - a <= 1e-10:
+            break
+    return math.exp(0.5 * (a + b))
+
+
+def stick_stiffness(table: OverclosureTable, kT_over_kN, pressure=None, *, length_scale=1.0,
+                    stress_scale=1.0) -> dict:
+    """The stick stiffness k_T = a k_N(p) [output stress per output length] at ``pressure``
+    (unit of E*, within the table's pressure range; default :func:`representative_pressure`),
+    and the range of k_T(p) over the table's pressures: {"pressure", "k_T", "range":
+    [(p_min, k_T(p_min)), (p_max, k_T(p_max))], "factor": k_T(p_max)/k_T(p_min)} (pressures
+    times ``stress_scale``)."""
+    a = positive("kT_over_kN", kT_over_kN)
+    lo, hi = table.pressure_range
+    p = representative_pressure(table) if pressure is None else positive("the k_T pressure", pressure)
+    if not lo <= p <= hi:
+        raise ValueError(f"the k_T pressure {p:g} must lie in the table's pressure range [{lo:g}, {hi:g}]")
+    to_out = a * positive("stress_scale", stress_scale) / positive("length_scale", length_scale)
+    k_lo, k_hi = (_law_at_pressure(table, x) * to_out for x in (lo, hi))
+    return {"pressure": p * stress_scale, "k_T": _law_at_pressure(table, p) * to_out,
+            "range": [(lo * stress_scale, k_lo), (hi * stress_scale, k_hi)], "factor": k_hi / k_lo}
+
+
+def friction_block(table: OverclosureTable, fmt: str, mu, kT_over_kN, *, kt_at=None, length_scale=1.0,
                    stress_scale=1.0) -> str:
-    """A ``*FRICTION`` block: Coulomb μ and the stick stiffness k_T(p0) = a·k_N(p0) at the
-    seating pressure (section 8, k_T = a k_N). CalculiX takes μ and the stick slope λ
-    [stress/length] directly; Abaqus takes an elastic slip γ, written as γ = μ p0/k_T(p0)
-    (the stick stiffness μp/γ then matches k_T at p0 only). Neither expresses k_T(p) or the
-    paper's hardening friction (section 8.1)."""
+    """A ``*FRICTION`` block: Coulomb μ and the stick stiffness k_T(P) = a·k_N(P) at the
+    pressure P = ``kt_at`` [unit of E*] (default :func:`representative_pressure`; section 8,
+    k_T = a k_N). CalculiX takes μ and the stick slope λ [stress/length] directly; Abaqus takes
+    an elastic slip γ, written as γ = μ P/k_T(P) (its stick stiffness μp/γ then grows with p
+    and matches k_T at P). Neither expresses k_T(p) (the note states its range over the table's
+    pressures) or the paper's hardening friction (section 8.1)."""
     choice("format", fmt, ("abaqus", "calculix"))
     mu = positive("mu", mu)
-    a = positive("kT_over_kN", kT_over_kN)
-    if table.reference != "seating":
-        raise ValueError("the friction block needs the seating reference (k_T at p0)")
-    p0 = table.seating_pressure
-    kN = float(table.law.evaluate(table.h_ref)[1])
-    kT = a * kN * positive("stress_scale", stress_scale) / positive("length_scale", length_scale)
-    note = (f"** friction: mu = {mu:g}, k_T(p0) = {a:g} k_N(p0) = {_FMT.format(kT)} "
-            "(the code keeps it constant; the law's k_T follows k_N(p))")
+    k = stick_stiffness(table, kT_over_kN, kt_at, length_scale=length_scale, stress_scale=stress_scale)
+    (p_lo, k_lo), (p_hi, k_hi) = k["range"]
+    note = (f"** friction: mu = {mu:g}, k_T = {kT_over_kN:g} k_N at p = {k['pressure']:.6g}: {_FMT.format(k['k_T'])}\n"
+            f"** the law's k_T(p) runs from {k_lo:.4g} at p = {p_lo:.4g} to {k_hi:.4g} at p = {p_hi:.4g}; "
+            "the code keeps one value")
     if fmt == "calculix":
-        return f"{note}\n*FRICTION\n{_FMT.format(mu)}, {_FMT.format(kT)}"
-    gamma = mu * p0 * stress_scale / kT
+        return f"{note}\n*FRICTION\n{_FMT.format(mu)}, {_FMT.format(k['k_T'])}"
+    gamma = mu * k["pressure"] / k["k_T"]
     return f"{note}\n*FRICTION, ELASTIC SLIP={_FMT.format(gamma)}\n{_FMT.format(mu)}"
 
 

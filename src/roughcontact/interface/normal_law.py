@@ -403,8 +403,11 @@ class _DirectIntegration:
             new = h + min(max(r * p[0] / k[0], -3.0 * sigma), 3.0 * sigma)
             if not (lo < new < hi):
                 new = 0.5 * (lo + hi)
-            h = new
-        raise RuntimeError(f"no separation found for W/A0 = {p_target:g}")
+            h_last, h = h, new
+        # not a numerical breakdown (Newton with bisection brackets any reachable pressure):
+        # the target lies beyond what the integrators represent, a bad range (ValueError)
+        raise ValueError(f"the pressure {p_target:g} is not reached by the model (after 100 steps: h = {h_last:g}, "
+                         f"W/A0 = {p[0]:g}): choose a pressure range the law can reach")
 
 
 def _refine(direct, h_min, h_max, rtol):

@@ -175,6 +175,8 @@ def node_prints(dat: str, node_set: str) -> list[tuple[float, dict[int, np.ndarr
             parts = line.split()
             if len(parts) == 4 and parts[0].isdigit():
                 rows[int(parts[0])] = np.array([float(v) for v in parts[1:]])
+            elif rows and parts:  # the next print's header (e.g. *CONTACT PRINT's 4-column rows)
+                break
         out.append((float(m.group(2)), rows))
     return out
 
