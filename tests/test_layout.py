@@ -28,6 +28,7 @@ LAYERS = [
     {"contact"},
     {"interface"},
     {"fe"},
+    {"examples"},
     {"paper"},
     {"io", "warmup", "cli", "__main__", "__init__"},
 ]

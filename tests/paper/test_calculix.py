@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 import yaml
 
-from roughcontact.fe.beam import BeamSpec
+from roughcontact.examples.beam import BeamSpec
 from roughcontact.interface.export import format_table, overclosure_table
 from roughcontact.paper import calculix
 from roughcontact.statistics import SpectralMoments
@@ -91,15 +91,14 @@ def test_block_closure_is_the_inverse_of_the_law(tmp_path):
 def test_beam_agrees_with_the_engine(tmp_path):
     """The frictionless beam of example 9.1 (m00 = 0.0625) in ccx with the exported table vs
     this project's engine on the same mesh lines: centre and end within the configured atol."""
-    from roughcontact.fe.beam import beam_case
+    from roughcontact.examples.beam import run_beam
+    from roughcontact.examples.runs import beam_run
 
     case = "3"
-    run = {"family": "quadratic", "case": case, "m00": BEAM["cases"][case]["m00"], "law": "elastic",
-           "E_star": E_STAR, "tangential": "free", "surface": BEAM["surface"], "spec": BEAM["spec"]}
-    ours = beam_case(run)
+    ours = run_beam(beam_run(BEAM, "quadratic", case))
     spec = ours.spec
-    f = calculix.engine_deflections_um(ours.solution.model.points.x[:, 0], ours.solution.model.points.x[:, 1],
-                                       -ours.solution.point_fields(-1, reference=0)["closure_mm"] * 1000.0, spec)
+    points = ours.point_fields()
+    f = calculix.engine_deflections_um(points["x"][:, 0], points["x"][:, 1], points["u_N_um"], spec)
     table, text = _table(case, spec)
     dat, seconds = calculix.run_ccx(calculix.beam_deck(text, spec), "beam", tmp_path)
     got = calculix.beam_deflections_um(dat, spec)
