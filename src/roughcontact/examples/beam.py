@@ -44,9 +44,8 @@ from ..fe.laws import Coulomb, InteractionLaw, LawFile, NoFriction, Stick
 from ..fe.mesh import graded
 from ..fe.solver import NewtonOptions
 from ..interface import friction
-from ..statistics import SpectralMoments
 from ..validation import choice, positive
-from .section9 import BEAM, BEAM_E_STAR, SURFACE
+from .section9 import BEAM, BEAM_E_STAR, SURFACE, OnSurface
 
 __all__ = ["BeamSpec", "BeamRun", "BeamResult", "beam_deck", "beam_mesh", "run_beam", "ELEMENT_FAMILIES", "TANGENTIAL",
            "PRESSURE_RANGE", "INTERACTION"]
@@ -177,7 +176,7 @@ def beam_mesh(spec: BeamSpec = BeamSpec()):
 
 
 @dataclass(frozen=True)
-class BeamRun:
+class BeamRun(OnSurface):
     """One run of example 9.1: the spec (geometry, loads, mesh, element family), the Table 4
     case, the surface (m00 [µm²] and the other moments), the normal law (``law``; ``psi`` or
     ``Y`` [N/mm²] for the elasto-plastic one: closures yield-from-psi or material), E*
@@ -204,11 +203,7 @@ class BeamRun:
         if self.law == "elastoplastic" and (self.psi is None) == (self.Y is None):
             raise ValueError("the elasto-plastic law needs exactly one of psi and Y")
         positive("E_star", self.E_star)
-        object.__setattr__(self, "surface", tuple((k, float(v)) for k, v in dict(self.surface).items()))
-
-    @property
-    def moments(self) -> SpectralMoments:
-        return SpectralMoments(m00=self.m00, **dict(self.surface))
+        self._freeze_surface()
 
     @property
     def family(self) -> str:
@@ -227,10 +222,6 @@ class BeamRun:
         law = InteractionLaw(moments, "um", (1.0, 0.0, 0.0), self.law, self.spec.seating_pressure, restraint,
                              E_star=self.E_star, psi=self.psi, yield_strength=self.Y, pressure_range=PRESSURE_RANGE)
         return LawFile("mm", {INTERACTION: law})
-
-    def to_dict(self) -> dict:
-        """JSON-ready (provenance)."""
-        return {**asdict(self), "surface": dict(self.surface)}
 
     def with_(self, **changes) -> "BeamRun":
         """A copy with run fields or, under ``spec``, spec fields changed."""

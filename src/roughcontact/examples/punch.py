@@ -45,10 +45,9 @@ from ..fe.deck_writer import box_part, element_lines, id_lines, node_lines, numb
 from ..fe.laws import InteractionLaw, LawFile, NoFriction, Orthotropic
 from ..fe.solver import NewtonOptions
 from ..interface import friction
-from ..statistics import SpectralMoments
 from ..validation import choice, positive
 from .punch_geometry import BASE, SYMMETRY_X, SYMMETRY_Y, PunchGeometry
-from .section9 import FIG18_CASES, FIG18_NU, N_PER_MM, PUNCH, PUNCH_M00, PUNCH_PSI, SURFACE
+from .section9 import FIG18_CASES, FIG18_NU, N_PER_MM, PUNCH, PUNCH_M00, PUNCH_PSI, SURFACE, OnSurface
 
 __all__ = ["PunchSpec", "PunchRun", "PunchResult", "punch_deck", "punch_mesh", "summary", "run_punch", "dissipation", "bound",
            "frictionless_bound", "mu_max", "to_dataset", "summary_of", "LOAD_ON", "CASES", "PRESSURE_RANGE"]
@@ -162,7 +161,7 @@ def summary(mesh) -> dict:
 
 
 @dataclass(frozen=True)
-class PunchRun:
+class PunchRun(OnSurface):
     """One run of example 9.2: the friction ``case`` ("a" | "b" | "c": Fig. 18's parameters;
     "frictionless": no tangential restraint, for the bound), the spec, the surface (m00 [µm²]
     and the other moments), the normal law (``law``, ``psi``), E* [N/mm²] (None: from the two
@@ -187,11 +186,7 @@ class PunchRun:
             raise ValueError("psi is needed with the elasto-plastic law and only used there")
         if self.E_star is not None:
             positive("E_star", self.E_star)
-        object.__setattr__(self, "surface", tuple((k, float(v)) for k, v in dict(self.surface).items()))
-
-    @property
-    def moments(self) -> SpectralMoments:
-        return SpectralMoments(m00=self.m00, **dict(self.surface))
+        self._freeze_surface()
 
     @property
     def family(self) -> str:
@@ -210,10 +205,6 @@ class PunchRun:
                              E_star=self.E_star, psi=self.psi, pressure_range=PRESSURE_RANGE,
                              tangential_form=self.tangential_form)
         return LawFile("mm", {INTERACTION: law})
-
-    def to_dict(self) -> dict:
-        """JSON-ready (provenance)."""
-        return {**asdict(self), "surface": dict(self.surface)}
 
     def with_(self, **changes) -> "PunchRun":
         """A copy with run fields, spec fields under ``spec`` and geometry fields under ``geometry`` changed."""

@@ -49,6 +49,27 @@ MESH_CAPTIONS = {"quadratic": "Fig. 14: punch on foundation with 21-node transit
 _LENGTH_PER_MM = {"mm": 1.0, "um": 1e3, "µm": 1e3, "m": 1e-3}
 
 
+class OnSurface:
+    """What a run of an example on a surface shares (a mixin of frozen dataclasses with the
+    fields ``m00`` [µm²] and ``surface``, the other moments as ((name, value), ...))."""
+
+    def _freeze_surface(self):
+        object.__setattr__(self, "surface", tuple((k, float(v)) for k, v in dict(self.surface).items()))
+
+    @property
+    def moments(self):
+        """The surface's SpectralMoments [µm units]."""
+        from ..statistics import SpectralMoments
+
+        return SpectralMoments(m00=self.m00, **dict(self.surface))
+
+    def to_dict(self) -> dict:
+        """JSON-ready (provenance)."""
+        from dataclasses import asdict
+
+        return {**asdict(self), "surface": dict(self.surface)}
+
+
 def fig18_preset(case, k_N, length_unit="mm"):
     """Orthotropic model and stiffnesses of Fig. 18/19 case 'a', 'b' or 'c'.
 

@@ -176,28 +176,25 @@ class _Reader:
     def _name(self, kw: Keyword, param: str) -> str:
         return kw.param(param, required=True).strip('"').upper()
 
-    def _node_refs(self, text: str, where: str) -> list[int]:
-        """A node id or the nodes of an nset."""
+    def _refs(self, text: str, where: str, kind: str) -> list[int]:
+        """The ids of a set (kind "node": *NSET, "element": *ELSET) named ``text``, or the one id."""
+        sets, defined, keyword = ((self.nsets, self.nodes, "*NSET") if kind == "node"
+                                  else (self.elsets, self.elements, "*ELSET"))
         name = text.strip('"').upper()
-        if name in self.nsets:
-            return sorted(self.nsets[name])
+        if name in sets:
+            return sorted(sets[name])
         if text.lstrip("-").isdigit():
-            nid = _int(text, where, "a node id")
-            if nid not in self.nodes:
-                raise DeckError(where, f"node {nid} is not defined")
-            return [nid]
-        raise DeckError(where, f"missing set: no *NSET {name} (nor a node id)")
+            i = _int(text, where, f"a {kind} id")
+            if i not in defined:
+                raise DeckError(where, f"{kind} {i} is not defined")
+            return [i]
+        raise DeckError(where, f"missing set: no {keyword} {name} (nor {'an' if kind == 'element' else 'a'} {kind} id)")
+
+    def _node_refs(self, text: str, where: str) -> list[int]:
+        return self._refs(text, where, "node")
 
     def _element_refs(self, text: str, where: str) -> list[int]:
-        name = text.strip('"').upper()
-        if name in self.elsets:
-            return sorted(self.elsets[name])
-        if text.lstrip("-").isdigit():
-            eid = _int(text, where, "an element id")
-            if eid not in self.elements:
-                raise DeckError(where, f"element {eid} is not defined")
-            return [eid]
-        raise DeckError(where, f"missing set: no *ELSET {name} (nor an element id)")
+        return self._refs(text, where, "element")
 
     def _generate(self, kw: Keyword, line, what: str) -> list[int]:
         if len(line.fields) not in (2, 3):

@@ -91,7 +91,7 @@ class DeckResult:
         out = np.empty(self.problem.points.n_points)
         for material, a, b in self.problem.materials.parts:
             name = self.problem.interaction_of_point[a]
-            out[a:b] = LENGTH_UNITS[self.problem.laws.interactions[name].moments_unit] / LENGTH_UNITS["um"]
+            out[a:b] = 10.0 ** (LENGTH_UNITS[self.problem.laws.interactions[name].moments_unit] - LENGTH_UNITS["um"])
         return out
 
     def interface_fields(self, inc: DeckIncrement) -> dict[str, np.ndarray]:

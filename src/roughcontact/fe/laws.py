@@ -31,6 +31,7 @@ springs without slip); ``tangential_form`` (interface.friction.TANGENTIAL_FORMS)
 
 from __future__ import annotations
 
+import functools
 import json
 import math
 from dataclasses import dataclass, field
@@ -42,8 +43,8 @@ from ..statistics import SpectralMoments
 __all__ = ["LENGTH_UNITS", "LawError", "NoFriction", "Coulomb", "Stick", "Orthotropic", "InteractionLaw",
            "LawFile", "read_law_file", "law_file_from_dict", "DEFAULT_PRESSURE_RANGE"]
 
-#: metres per unit
-LENGTH_UNITS = {"m": 1.0, "mm": 1e-3, "um": 1e-6, "µm": 1e-6, "nm": 1e-9}
+#: the length units: their power of ten in metres (unit = 10^k m), so that ratios are exact
+LENGTH_UNITS = {"m": 0, "mm": -3, "um": -6, "µm": -6, "nm": -9}
 #: the tabulated range of the normal law without ``pressure_range``, times E*
 DEFAULT_PRESSURE_RANGE = (1e-17, 0.1)
 _MOMENTS = ("m00", "m20", "m02", "m40", "m04")
@@ -238,29 +239,12 @@ class InteractionLaw:
 
     def law_per_deck(self, length_unit: str) -> float:
         """Law (moments) length units per deck length unit, e.g. 1000 for µm moments in an mm deck."""
-        return LENGTH_UNITS[length_unit] / LENGTH_UNITS[self.moments_unit]
+        return 10.0 ** (LENGTH_UNITS[length_unit] - LENGTH_UNITS[self.moments_unit])
 
     def material(self, length_unit: str, E_star: float):
-        """The engine's :class:`~.contact.InterfaceMaterial` (E_star: this law's, or the bodies')."""
-        from ..contact import resolve_material
-        from .contact import statistical_interface
-
-        if self.law == "elastic":
-            normal = {"E_star": E_star}
-        else:
-            by = {"psi": self.psi} if self.psi is not None else {"Y": self.yield_strength}
-            normal = {"material": resolve_material(self.moments, E_star=E_star, **by)}
-        p_range = self.pressure_range or tuple(f * E_star for f in DEFAULT_PRESSURE_RANGE)
-        per = self.law_per_deck(length_unit)
-        try:
-            return statistical_interface(self.moments, self.seating_pressure, model=self.friction.model(per),
-                                         kT_over_kN=self.friction.factors(), pressure_range=p_range,
-                                         length_per_mm=per, tangential_form=self.tangential_form, validity="off",
-                                         **normal)
-        except RuntimeError as exc:  # a pressure of the range out of the model's reach
-            raise LawError(f"the normal law cannot be tabulated over the pressures {p_range[0]:g} ... {p_range[1]:g} "
-                           f"with E* = {E_star:g} ({exc}): check E_star and the stress unit, or give a "
-                           "pressure_range the law reaches") from None
+        """The engine's :class:`~.contact.InterfaceMaterial` (E_star: this law's, or the bodies');
+        its table is built once per surface, law, E* and range in a process."""
+        return _material(self, length_unit, float(E_star))
 
     def to_yaml(self) -> dict:
         """The law as the mapping of the law file."""
@@ -275,6 +259,47 @@ class InteractionLaw:
         if self.tangential_form != "incremental-end":
             out["tangential_form"] = self.tangential_form
         return out
+
+
+@functools.lru_cache(maxsize=32)
+def _table(moments, level: str, normal, pressure_range):
+    """The tabulated normal law (interface.NormalLawTable, the FE accuracy "plot"), built once per
+    surface, law, E* or material and range in a process (immutable; friction cases share it)."""
+    from ..interface import NormalLawTable
+
+    kw = {"E_star": normal} if level == "elastic" else {"material": normal}
+    return NormalLawTable.build(moments, level, pressure_range=pressure_range, accuracy="plot", validity="off", **kw)
+
+
+def _material(law: InteractionLaw, length_unit: str, E_star: float):
+    """:meth:`InteractionLaw.material`: the normal law tabulated and put in its reference state
+    at the seating pressure, k_T = kt_over_kn · k_N (Mindlin's ratio (96) of the representative
+    summit ellipse where the friction gives none: :func:`.contact.statistical_interface`'s rule)."""
+    from ..contact import resolve_material
+    from ..interface import InterfaceLaw, mindlin_kT_over_kN
+    from ..interface.tangential import representative_aspect
+    from .contact import InterfaceMaterial
+
+    if law.law == "elastic":
+        normal = E_star
+    else:
+        by = {"psi": law.psi} if law.psi is not None else {"Y": law.yield_strength}
+        normal = resolve_material(law.moments, E_star=E_star, **by)
+    p_range = law.pressure_range or tuple(f * E_star for f in DEFAULT_PRESSURE_RANGE)
+    if not p_range[0] < law.seating_pressure < p_range[1]:
+        raise LawError(f"seating_pressure {law.seating_pressure:g} lies outside the tabulated pressures "
+                       f"{p_range[0]:g} ... {p_range[1]:g} (E* = {E_star:g}): check the stress unit, or give "
+                       "pressure_range")
+    try:
+        table = _table(law.moments, law.law, normal, tuple(p_range))
+    except RuntimeError as exc:  # a pressure of the range out of the model's reach
+        raise LawError(f"the normal law cannot be tabulated over the pressures {p_range[0]:g} ... {p_range[1]:g} "
+                       f"with E* = {E_star:g} ({exc}): check E_star and the stress unit, or give a "
+                       "pressure_range the law reaches") from None
+    factors = law.friction.factors() or mindlin_kT_over_kN(representative_aspect(law.moments), 0.25)
+    per = law.law_per_deck(length_unit)
+    return InterfaceMaterial(InterfaceLaw.from_pressure(table, law.seating_pressure, factors),
+                             law.friction.model(per), length_per_mm=per, tangential_form=law.tangential_form)
 
 
 def _moments(value, where: str, base: Path | None):
