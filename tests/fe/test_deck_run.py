@@ -195,3 +195,54 @@ def test_the_lay_along_y_swaps_the_slip_components(patch_runs, tmp_path):
     assert scale > 0
     np.testing.assert_allclose(slip["y"][mirror][:, [1, 0, 2]], slip["x"], rtol=0, atol=1e-8 * scale)
     assert np.abs(slip["x"][mirror][:, [1, 0, 2]] - slip["x"]).max() > 0.05 * scale  # x alone is not symmetric
+
+
+def test_two_interactions_in_one_deck(tmp_path):
+    """A stack of three bodies (quarter, rollers, symmetry planes) with two contact pairs of two
+    interactions: each interface closes by its own law's inverse, E* of each from its bodies (the
+    middle body two elements thick: an element touches on one face only)."""
+    from roughcontact.fe.deck_writer import box_part, element_lines, id_lines, node_lines
+
+    xy = [0.0, 5.0, 10.0]
+    parts = [box_part(xy, xy, [-4.0, 0.0]), box_part(xy, xy, [0.0, 2.0, 4.0], first_node=1001, first_element=101),
+             box_part(xy, xy, [4.0, 8.0], first_node=2001, first_element=201)]
+    names = ("LOW", "MID", "TOP")
+    mats = {"LOW": (2.1e5, 0.3), "MID": (7.0e4, 0.33), "TOP": (1.2e5, 0.34)}
+    lines = ["*HEADING", "a stack of three"]
+    for p, n in zip(parts, names):
+        lines += node_lines(p, f"{n}NODES")
+    for p, n in zip(parts, names):
+        lines += element_lines(p, n)
+    lines += id_lines("*NSET, NSET=XSYM", np.concatenate([p.face_nodes["XMIN"] for p in parts]))
+    lines += id_lines("*NSET, NSET=YSYM", np.concatenate([p.face_nodes["YMIN"] for p in parts]))
+    lines += id_lines("*NSET, NSET=FLOOR", parts[0].face_nodes["ZMIN"])
+    lines += id_lines("*ELSET, ELSET=TOPFACES", parts[2].face_elements["ZMAX"])
+    for p, n in zip(parts, names):
+        lines += [f"*SURFACE, NAME={n}DOWN", *(f"{e}, S1" for e in p.face_elements["ZMIN"]),
+                  f"*SURFACE, NAME={n}UP", *(f"{e}, S2" for e in p.face_elements["ZMAX"]),
+                  f"*MATERIAL, NAME={n}MAT", "*ELASTIC", f"{mats[n][0]}, {mats[n][1]}",
+                  f"*SOLID SECTION, ELSET={n}, MATERIAL={n}MAT"]
+    lines += ["*SURFACE INTERACTION, NAME=SMOOTH", "*SURFACE INTERACTION, NAME=ROUGH",
+              "*CONTACT PAIR, INTERACTION=SMOOTH", "MIDDOWN, LOWUP", "*CONTACT PAIR, INTERACTION=ROUGH", "TOPDOWN, MIDUP",
+              "*BOUNDARY", "FLOOR, 3, 3", "XSYM, 1, 1", "YSYM, 2, 2",
+              "*STEP", "*STATIC", "0.5, 1.", "*DLOAD", "TOPFACES, P2, 3.", "*END STEP"]
+    (tmp_path / "stack.inp").write_text("\n".join(lines) + "\n")
+    laws = {"length_unit": "mm", "interactions": {
+        "smooth": {"moments": {"m00": 0.0625, "m20": 8e-5, "m02": 8e-4, "m40": 1.04e-6, "m04": 1.04e-4, "unit": "um"},
+                   "lay_direction": [1, 0, 0], "law": "elastic", "seating_pressure": 1e-3},
+        "rough": {"moments": {"m00": 0.625e-6, "m20": 8e-5, "m02": 8e-4, "m40": 1.04, "m04": 104.0, "unit": "mm"},
+                  "lay_direction": [0, 1, 0], "law": "elastic", "seating_pressure": 1e-2}}}
+    (tmp_path / "laws.yaml").write_text(__import__("yaml").safe_dump(laws))
+    res = run_deck_file(tmp_path / "stack.inp", tmp_path / "laws.yaml", "cubic")
+    f = res.interface_fields(res.increments[-1])
+    assert list(res.problem.E_star) == ["SMOOTH", "ROUGH"]
+    assert res.problem.E_star["SMOOTH"] == effective_modulus(*mats["MID"], *mats["LOW"])
+    assert res.problem.E_star["ROUGH"] == effective_modulus(*mats["TOP"], *mats["MID"])
+    for k, (material, a, b) in enumerate(res.problem.materials.parts):
+        law = material.normal
+        um_per_unit = 1.0 if k == 0 else 1000.0  # the second law is in mm: its closure reported in µm
+        np.testing.assert_allclose(f["u_N_um"][a:b], expected_closure_um(law, 3.0) * um_per_unit, rtol=1e-9)
+        np.testing.assert_allclose(f["p_N"][a:b], 3.0, rtol=1e-9)
+    axes = res.summary()["interface_axes"]
+    assert axes["interaction"][0] == "SMOOTH" and axes["interaction"][-1] == "ROUGH"
+    assert np.allclose(axes["e_1"][-1], [0, 1, 0]) and np.allclose(axes["e_2"][-1], [-1, 0, 0])

@@ -5,8 +5,8 @@ The beam, 500 × 10 × 120 mm (x along it, y across its 10 mm thickness, z up), 
 500 × 10 face on a rigid base through the statistical interface and carries a load at
 mid-length: first the initial (seating) load, then the load in ``increments`` equal steps.
 
-The deck (:func:`beam_deck`; ``examples/decks/beam.inp`` is it with the defaults) states what
-the paper leaves open:
+The deck (:func:`beam_deck`; ``src/roughcontact/examples/decks/beam.inp`` with the defaults)
+states what the paper leaves open:
 
 * a quarter of the beam, x ∈ [0, 250], y ∈ [0, 5]: the paper's half model (x ≥ 0, symmetry
   u_x = 0 on x = 0) halved once more by the symmetry of the beam, its load and the

@@ -4,7 +4,7 @@ unloaded, run through the engine's deck reader.
 
 The punch (20 × 20 × 10 mm) and the foundation (100 × 100 × 50 mm), both E = 200 GPa, ν = 0.25,
 meet through the statistical interface of the Fig. 18 surface; a quarter model by symmetry
-(:mod:`.punch_geometry`). The deck (:func:`punch_deck`; ``decks/punch.inp`` with the defaults):
+(:mod:`.punch_geometry`). The deck (:func:`punch_deck`; ``src/roughcontact/examples/decks/punch.inp``):
 step 1 a seating pressure ``seating_pressure`` on the punch's whole top face (one increment: the
 interface law's reference state, every relative displacement is measured from it), step 2 a
 uniform pressure on a centred patch of the top raised in ``increments`` equal increments to
