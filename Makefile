@@ -4,7 +4,7 @@
 #   make test        create .venv (if missing), install, run the test suite (fast tier, < 3 min)
 #
 # Other targets: test-slow (the slow tier: mpmath references, workflow runs; CI runs it), test-all,
-# bench (speed against error, full mode), bench-fe (FE linear solvers), verify (verification report and verdict gate only),
+# bench (speed against error, full mode), bench-fe (FE: block-on-base deck vs CalculiX, linear solvers), verify (verification report and verdict gate only),
 # docs (API reference, Sphinx, warnings are errors), dry-run, ci (.ci/run), clean (generated results),
 # distclean (+ .venv).
 
@@ -35,7 +35,7 @@ $(PY):
 	$(PYTHON) -m venv $(VENV)
 
 $(STAMP): pyproject.toml | $(PY)
-	$(PY) -m pip install --quiet --editable '.[workflow,test,docs,cluster]'
+	$(PY) -m pip install --quiet --editable '.[workflow,test,docs,cluster,measure,bem]'
 	@touch $@
 
 venv: $(STAMP)
@@ -51,8 +51,11 @@ reproduce: $(STAMP)
 bench: $(STAMP)
 	$(SNAKEMAKE) speed_vs_error --config benchmark_mode=full
 
-# FE linear solvers (sparse refactorisation vs condensed bulk) on the beam, coarse to fine meshes
+# FE: the block-on-base deck in CalculiX and in the engine, refined 1x, 2x, 3x (3.4k-67k dofs;
+# results/benchmarks/fe_block_on_base/; the 3x ccx run takes most of the time), then the linear
+# strategies (sparse refactorisation vs condensed bulk) on the beam, coarse to fine meshes
 bench-fe: $(STAMP)
+	$(PY) benchmarks/fe_block_on_base.py
 	$(PY) benchmarks/fe_linear_solvers.py
 
 # pyproject.toml deselects the mpmath- and slow-marked tests by default ("fast by default")

@@ -154,7 +154,7 @@ def write_netcdf(results: dict, path: Path) -> None:
 def figure(results: dict, path) -> None:
     """Error (log) against time per separation (log), one curve per method family, per
     quantity; each marker one setting: median time over the points, worst error over them."""
-    from roughcontact.paper.style import legend_outside, new_figure, save, style
+    from roughcontact.plots.style import legend_outside, new_figure, save, style
 
     styles = {
         "production": dict(color="#1b4f72", marker="o", ls="-"),
@@ -166,7 +166,7 @@ def figure(results: dict, path) -> None:
         "mpmath": dict(color="#7d3c98", marker="v", ls="-"),
     }
     settings = results["summary"]["settings"]
-    with style():  # the project's figure style (roughcontact.paper.style)
+    with style():  # the project's figure style (roughcontact.plots.style)
         fig = new_figure(figsize=(11.0, 6.6))
         axes = fig.subplots(2, 3, sharex="row")
         for i, (model, (err_goal, t_goal)) in enumerate(GOALS.items()):

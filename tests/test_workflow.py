@@ -270,3 +270,49 @@ def test_sweep_dispatched_through_generic_cluster_executor(tmp_path):
     prov = io.read_provenance(merged)
     assert prov["config"]["sweep"] == "tiny" and prov["roughcontact_version"]
     assert merged["pressure"].attrs["units"] == CONFIG["units"]["stress"]
+
+
+# -- the BEM comparison (issue 21): optional, not part of all -------------------------------------
+def _hide_contact_mechanics(tmp_path):
+    """An environment in which `import ContactMechanics` fails, as without the extra [bem]."""
+    import os
+
+    fake = tmp_path / "no_bem" / "ContactMechanics"
+    fake.mkdir(parents=True, exist_ok=True)
+    (fake / "__init__.py").write_text("raise ImportError('ContactMechanics hidden by the test')\n")
+    return {**os.environ, "PYTHONPATH": os.pathsep.join(filter(None, [str(fake.parent), os.environ.get("PYTHONPATH")]))}
+
+
+def test_bem_plans_one_job_per_realisation(tmp_path):
+    """The CI scale: 2 families x 2 seeds on 256^2, the checks, the report; cached per file."""
+    from roughcontact.bem.solver import available
+
+    if not available():
+        pytest.skip("the present path needs the extra [bem]")
+    clone = fresh_clone(tmp_path)
+    r = snakemake(clone, "-n", "bem", "--config", "bem_scale=ci")
+    assert r.returncode == 0, r.stderr
+    assert re.search(r"bem_run\s+4\b", r.stdout) and re.search(r"bem_checks\s+1\b", r.stdout), r.stdout
+    for fam in CONFIG["bem"]["families"]:
+        assert f"results/bem/runs/{fam}/n256/seed1.nc" in r.stdout
+
+
+def test_bem_without_the_extra_says_skipped_in_one_line(tmp_path):
+    clone = fresh_clone(tmp_path)
+    r = subprocess.run([*SNAKEMAKE, "--cores", "1", "bem"], cwd=clone, capture_output=True, text=True, timeout=300,
+                       env=_hide_contact_mechanics(tmp_path))
+    assert r.returncode == 0, r.stderr
+    from roughcontact.bem.solver import SKIP_MESSAGE
+
+    assert [line for line in (r.stdout + r.stderr).splitlines() if "[bem]" in line] == [SKIP_MESSAGE]
+    assert not (clone / "results" / "bem").exists()
+    r = subprocess.run([*SNAKEMAKE, "-n", "all"], cwd=clone, capture_output=True, text=True, timeout=300,
+                       env=_hide_contact_mechanics(tmp_path))
+    assert r.returncode == 0, r.stderr  # the rest of the workflow is unaffected, and bem is not part of all
+    assert "bem_run" not in r.stdout and "bem_report" not in r.stdout
+
+
+def test_bad_bem_scale_is_refused(tmp_path):
+    clone = fresh_clone(tmp_path)
+    r = snakemake(clone, "-n", "bem", "--config", "bem_scale=huge")
+    assert r.returncode != 0 and "bem_scale 'huge'" in r.stdout + r.stderr

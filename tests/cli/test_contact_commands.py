@@ -114,7 +114,7 @@ def test_elastic_text_table(capsys):
     assert code == 0 and err == ""
     lines = out.splitlines()
     assert "model=gw" in lines[0]
-    assert lines[1].split() == ["s", "h", "area_fraction", "pressure", "stiffness"]
+    assert lines[1].split() == ["s", "h", "area_fraction", "pressure", "stiffness", "k_Tx", "k_Ty"]
     rows = [list(map(float, line.split())) for line in lines[3:5]]
     assert [r[0] for r in rows] == [1.0, 2.0]
     assert rows[0][2] == pytest.approx(0.051497, rel=1e-4)
@@ -186,7 +186,7 @@ def test_elastoplastic_text_table(capsys):
     assert lines[1].split() == ["s", "h", "area_fraction", "pressure", "stiffness",
                                 "elastic_area_fraction", "elastoplastic_area_fraction",
                                 "plastic_area_fraction", "elastic_pressure",
-                                "elastoplastic_pressure", "plastic_pressure"]
+                                "elastoplastic_pressure", "plastic_pressure", "k_Tx", "k_Ty"]
 
 
 def test_version(capsys):

@@ -94,3 +94,20 @@ def test_bad_specs_fail_before_computing(kw, fragment):
     with pytest.raises(ValueError) as e:
         run_sweep(spec(**kw))
     assert fragment in str(e.value)
+
+
+def test_a_sweep_takes_its_moments_from_a_moments_file(tmp_path):
+    """`moments: surface.json` in a sweep configuration fixes the moments that are not swept,
+    converted into the configuration's length unit (issue 20: piping a scan into a sweep)."""
+    import json
+
+    from roughcontact.contact.sweep import spec_from_config
+
+    (tmp_path / "surface.json").write_text(json.dumps(
+        {"m00": 0.0625e-6, "m20": 8e-5, "m02": 8e-4, "m40": 1.04, "m04": 104.0, "unit": "mm"}))
+    cfg = {"axes": {"m00": [0.0625, 0.125], "psi": [0.5]}, "s": [1.0, 2.0], "fixed": {"E_star": 1.14e5},
+           "moments": str(tmp_path / "surface.json"), "closure": "yield-from-psi"}
+    spec = spec_from_config(cfg, {"length": "um", "stress": "N/mm^2"})
+    assert spec.fixed["m40"] == pytest.approx(1.04e-6) and spec.fixed["m20"] == 8e-5 and "m00" not in spec.fixed
+    with pytest.raises(ValueError, match="both in fixed and in the moments file"):
+        spec_from_config({**cfg, "fixed": {"E_star": 1.14e5, "m20": 1e-4}})

@@ -41,7 +41,23 @@ def test_check_validity_warns_and_refuses():
     assert w == []
     with pytest.raises(ValueError, match="area_ratio_limit"):
         check_validity([1.0], [0.01], area_ratio_limit=2.0)
-    assert validity.AREA_RATIO_LIMIT == 0.1
+    assert validity.AREA_RATIO_LIMIT == 0.1  # the messages above quote it
+
+
+def test_the_area_limit_is_the_measured_one():
+    """AREA_RATIO_LIMIT is the smallest A/A0 up to which the model stayed within 20 % of the BEM
+    (BEM_AGREEMENT_20, from `snakemake bem`), rounded down to two decimals; docs/bem.md quotes
+    the same numbers."""
+    import math
+    from pathlib import Path
+
+    inside = [v[0] for v in validity.BEM_AGREEMENT_20.values()]
+    assert validity.AREA_RATIO_LIMIT == math.floor(100 * min(inside)) / 100
+    for low, high in validity.BEM_AGREEMENT_20.values():
+        assert 0 < low < 1 and (high is None or low < high <= 1)
+    doc = (Path(__file__).resolve().parents[2] / "docs" / "bem.md").read_text()
+    for family, (low, high) in validity.BEM_AGREEMENT_20.items():
+        assert f"| {family} | {low:g} |" in doc, family
 
 
 def test_elastic_contact_refuses_more_than_the_nominal_area():

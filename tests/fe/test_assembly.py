@@ -559,3 +559,22 @@ def test_bimaterial_column(rng):
     uz = np.where(z <= 1, sigma * z / E1, sigma / E1 + sigma * (z - 1) / E2)
     exact = np.column_stack([-nu1 * sigma * x[:, 0] / E1, -nu1 * sigma * x[:, 1] / E1, uz])
     assert np.max(np.abs(u - exact)) < PATCH * np.abs(exact).max()
+
+
+def test_strain_matrix_and_chunked_stiffness_against_their_dense_forms(rng, monkeypatch):
+    """strain_matrix fills the non-zeros of the Voigt operator: equal to the dense einsum
+    Σ_ik _STRAIN[s, i, k] ∂N_a/∂x_k; element_stiffness in chunks of cells equals one chunk
+    (to round-off of the summation order)."""
+    from roughcontact.fe import assembly
+    from roughcontact.fe.mesh import box
+
+    G = rng.normal(size=(4, 5, 20, 3))
+    dense = np.einsum("sik,...ak->...sai", assembly._STRAIN, G).reshape(4, 5, 6, 60)
+    assert np.array_equal(assembly.strain_matrix(G), dense)
+    mesh = box(np.linspace(0, 2, 4), np.linspace(0, 1, 3), np.linspace(0, 1, 3))
+    cells, el = mesh.blocks[0].cells, mesh.blocks[0].element
+    x = mesh.points[cells] + rng.normal(scale=0.02, size=mesh.points[cells].shape)
+    D = assembly.isotropic_elasticity(2e5, 0.3)
+    whole = assembly.element_stiffness(el, x, D)
+    monkeypatch.setattr(assembly, "_CHUNK", 5)
+    np.testing.assert_allclose(assembly.element_stiffness(el, x, D), whole, rtol=0, atol=1e-12 * np.abs(whole).max())

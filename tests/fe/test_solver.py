@@ -114,7 +114,7 @@ def test_residual_jacobian_is_the_consistent_tangent(tangential, materials):
     assert worst <= 1e-6
 
 
-@pytest.mark.parametrize("kind", ["sparse", "condensed"])
+@pytest.mark.parametrize("kind", ["sparse", "condensed", "auto"])
 @pytest.mark.parametrize("tangential", ["free", "coulomb"])
 def test_linear_solvers_solve_the_tangent_system(kind, tangential, materials):
     """Both linear strategies return du with K_t du = r (the Cholesky path for the symmetric
@@ -271,3 +271,33 @@ def test_fixed_dofs_must_be_integer_indices(materials):
         except (TypeError, ValueError):
             continue  # a clear error is fine
         assert np.array_equal(other.fixed, model.fixed)  # or the mask's dofs
+
+
+def test_auto_strategy_by_interface_size(materials, monkeypatch):
+    """"auto" condenses while the interface has at most AUTO_CONDENSED_MAX dofs, else
+    refactors the sparse tangent; the two give the same solution (to the force tolerance)."""
+    model = block_model(materials["free"])
+    n_I = solver_module.interface_dofs(model)
+    assert 0 < n_I <= 3 * model.points.n_points  # the rigid base: one side free (less the symmetry planes)
+    assert solver_module.linear_strategy(model) == "condensed"
+    assert solver_module.linear_strategy(model, "sparse") == "sparse"
+    condensed = solve(model, [P0, 1.0])
+    monkeypatch.setattr(solver_module, "AUTO_CONDENSED_MAX", n_I - 1)
+    assert solver_module.linear_strategy(model) == "sparse"
+    sparse = solve(model.with_material(model.material), [P0, 1.0])
+    np.testing.assert_allclose(sparse.final.u, condensed.final.u, rtol=0, atol=1e-9 * np.max(np.abs(condensed.final.u)))
+
+
+def test_coordinates_are_checked_and_optional(materials):
+    """Node coordinates only order the sparse factorisations: without them (reverse
+    Cuthill–McKee) the answer is the same; a wrong shape is a clear error."""
+    model = block_model(materials["free"])
+    assert model.coordinates is not None and model.with_material(model.material).coordinates is model.coordinates
+    bare = ContactModel(model.stiffness, model.points, model.material, model.fixed, model.load)
+    for kind in ("condensed", "sparse"):
+        a = solve(model, [P0, 1.0], NewtonOptions(linear_solver=kind)).final.u
+        b = solve(bare, [P0, 1.0], NewtonOptions(linear_solver=kind)).final.u
+        np.testing.assert_allclose(a, b, rtol=0, atol=1e-9 * np.max(np.abs(a)))
+    with pytest.raises(ValueError, match="coordinates"):
+        ContactModel(model.stiffness, model.points, model.material, model.fixed, model.load,
+                     coordinates=model.coordinates[:-1])

@@ -25,7 +25,7 @@ rule speed_vs_error:
         code=BENCH_SOURCES,
     output:
         png="paper_figures/speed_vs_error.png",
-        pdf="paper_figures/speed_vs_error.pdf",  # vector, beside the PNG (paper.style.save)
+        pdf="paper_figures/speed_vs_error.pdf",  # vector, beside the PNG (plots.style.save)
         md="paper_figures/speed_vs_error.md",
         data="results/benchmarks/speed_vs_error/results.nc",
         sweep="results/benchmarks/sweep_throughput/results.json",

@@ -98,7 +98,7 @@ PHYSICS_SOURCES = library_sources(
 #: that a cold cache is compiled once, not once per parallel job (docs/performance.md).
 KERNELS_WARM = "results/numba/warm.stamp"
 REPORT_SOURCES = library_sources(
-    "paper/claims.py", "paper/verify.py", "paper/report.py", "paper/plots.py", "paper/style.py", "io.py",
+    "paper/claims.py", "paper/verify.py", "paper/report.py", "paper/plots.py", "plots/style.py", "io.py",
     "files.py",
 )
 

@@ -17,7 +17,7 @@ DRAWING_SOURCES = [
     "src/roughcontact/fe/quadrature.py",
     "src/roughcontact/paper/drawings.py",
     "src/roughcontact/paper/plots.py",
-    "src/roughcontact/paper/style.py",
+    "src/roughcontact/plots/style.py",
 ]
 
 
@@ -27,7 +27,7 @@ rule drawing:
         code=DRAWING_SOURCES,
     output:
         png="paper_figures/{drawing}.png",
-        pdf="paper_figures/{drawing}.pdf",  # vector, beside the PNG (paper.style.save)
+        pdf="paper_figures/{drawing}.pdf",  # vector, beside the PNG (plots.style.save)
         csv="paper_figures/{drawing}.csv",
     log:
         "logs/drawing/{drawing}.log",
@@ -62,7 +62,7 @@ rule geometry_figure:
     """Fig. 1 or Fig. 2 (PNG + PDF), the drawn data (CSV) and the figure's numbers (JSON)."""
     input:
         code=["src/roughcontact/paper/geometry.py", "src/roughcontact/paper/plots.py",
-              "src/roughcontact/paper/style.py", "src/roughcontact/statistics/synthetic.py",
+              "src/roughcontact/plots/style.py", "src/roughcontact/statistics/synthetic.py",
               "src/roughcontact/statistics/surface.py", "src/roughcontact/asperity/ellipse.py"],
     output:
         png="paper_figures/{fig}.png",

@@ -58,7 +58,7 @@ rule fe_fig13:
         code=FE_REPORT_SOURCES,
     output:
         png="paper_figures/fig13.png",
-        pdf="paper_figures/fig13.pdf",  # vector, beside the PNG (paper.style.save)
+        pdf="paper_figures/fig13.pdf",  # vector, beside the PNG (plots.style.save)
         csv="paper_figures/fig13.csv",
     log:
         "logs/fe/fig13.log",
@@ -94,10 +94,10 @@ rule fe_beam_study:
 rule fe_fig10:
     """Fig. 10: the beam model (quarter mesh, supports, load), drawn from the engine's mesh."""
     input:
-        code=library_sources("fe", "paper/drawings.py", "paper/plots.py", "paper/style.py"),
+        code=library_sources("fe", "paper/drawings.py", "paper/plots.py", "plots/style.py"),
     output:
         png="paper_figures/fig10.png",
-        pdf="paper_figures/fig10.pdf",  # vector, beside the PNG (paper.style.save)
+        pdf="paper_figures/fig10.pdf",  # vector, beside the PNG (plots.style.save)
     log:
         "logs/fe/fig10.log",
     params:
@@ -226,7 +226,7 @@ rule fe_punch_slips:
         code=FE_REPORT_SOURCES + library_sources("paper/fe_punch.py"),
     output:
         png="paper_figures/{fig}.png",
-        pdf="paper_figures/{fig}.pdf",  # vector, beside the PNG (paper.style.save)
+        pdf="paper_figures/{fig}.pdf",  # vector, beside the PNG (plots.style.save)
         csv="paper_figures/{fig}.csv",
     log:
         "logs/fe/{fig}.log",
@@ -244,10 +244,10 @@ rule fe_punch_slips:
 rule fe_punch_mesh_figure:
     """Figs 14 (21-node) and 15 (28-node): the quarter punch on the foundation, from the engine's mesh."""
     input:
-        code=library_sources("fe", "paper/drawings.py", "paper/plots.py", "paper/style.py"),
+        code=library_sources("fe", "paper/drawings.py", "paper/plots.py", "plots/style.py"),
     output:
         png="paper_figures/{fig}.png",
-        pdf="paper_figures/{fig}.pdf",  # vector, beside the PNG (paper.style.save)
+        pdf="paper_figures/{fig}.pdf",  # vector, beside the PNG (plots.style.save)
     log:
         "logs/fe/{fig}.log",
     wildcard_constraints:

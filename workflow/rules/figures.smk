@@ -102,7 +102,7 @@ rule figure:
         code=REPORT_SOURCES,
     output:
         png="paper_figures/{scene}.png",
-        pdf="paper_figures/{scene}.pdf",  # vector, beside the PNG (paper.style.save)
+        pdf="paper_figures/{scene}.pdf",  # vector, beside the PNG (plots.style.save)
         csv="paper_figures/{scene}.csv",
         checks="results/verify/{scene}.checks.csv",
     log:

@@ -19,7 +19,7 @@ rule gallery:
     localrule: True
     input:
         entries="config/gallery.yaml",
-        code=["src/roughcontact/paper/gallery.py", "src/roughcontact/paper/style.py"],
+        code=["src/roughcontact/paper/gallery.py", "src/roughcontact/plots/style.py"],
         figures=gallery_inputs(),
     output:
         "paper_figures/index.html",

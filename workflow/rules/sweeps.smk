@@ -8,6 +8,7 @@ rule sweep_part:
     input:
         lib=PHYSICS_SOURCES,
         kernels=KERNELS_WARM,
+        moments=lambda w: [SWEEPS[w.sweep]["moments"]] if SWEEPS[w.sweep].get("moments") else [],
     output:
         "results/sweeps/{sweep}/part-{part}.nc",
     log:

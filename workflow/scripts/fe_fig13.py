@@ -10,7 +10,7 @@ import yaml
 from roughcontact import io
 from roughcontact.examples.section9 import FIG13_MARKERS
 from roughcontact.paper import plots
-from roughcontact.paper.style import parameter_label
+from roughcontact.plots.style import parameter_label
 
 
 def run(paths, runs, paper, out, log):

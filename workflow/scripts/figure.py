@@ -9,7 +9,7 @@ import yaml
 
 from roughcontact import SpectralMoments, io
 from roughcontact.paper import claims, plots, verify
-from roughcontact.paper.style import SYMBOLS, axis_label, parameter_label, pretty_unit
+from roughcontact.plots.style import SYMBOLS, axis_label, parameter_label, pretty_unit
 
 
 def _csv(header, columns):

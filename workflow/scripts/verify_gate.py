@@ -24,7 +24,8 @@ def message(summary):
         )
     coverage = summary.get("coverage") or {}
     lines += [f"  MISSING CHECKS {m['scene']}: {m['found']} of {m['expected']} declared" for m in coverage.get("missing", [])]
-    lines += [f"  skipped {m['scene']}: needs {m['requires']}, not installed" for m in coverage.get("skipped", [])]
+    lines += [f"  skipped {m['scene']}: {m['requires']} not run" if m["requires"].startswith("target ")
+              else f"  skipped {m['scene']}: needs {m['requires']}, not installed" for m in coverage.get("skipped", [])]
     lines += [f"  more checks than declared in {m['scene']}: {m['found']} of {m['expected']} (update expected_checks)"
               for m in coverage.get("unexpected", [])]
     lines += [f"  REGRESSION {i}" for i in summary["regression_ids"]]

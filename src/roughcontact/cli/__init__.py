@@ -13,8 +13,10 @@ A thin layer: parse and validate the arguments, call the library, print the resu
                          [--K-v KV] [--hertz exact|paper] [--method production|reference]
                          [--accuracy table|plot] [--json]
     roughcontact mindlin --b2-over-a2 R [R ...] --nu NU [--json]
-    roughcontact moments FILE --dx DX [--dy DY] [--estimator spectral|fd] [--window hann|none]
-                         [--detrend plane|mean|none] [--lay-angle DEG] [--z-scale F] [--json]
+    roughcontact moments FILE [--dx DX] [--dy DY] [--unit um] [--xy-unit U] [--z-unit U]
+                         [--estimator fd|spectral] [--order 6] [--fill none|harmonic]
+                         [--layout auto|grid|xyz] [--channel N] [--plot FILE.png] [--json]
+    roughcontact plot RESULT.json [RESULT.json ...] -o FILE.png|pdf [--x separation|pressure]
     roughcontact export --format abaqus|calculix|csv --m00 M ... --m04 M --E-star E
                          [--law elastic|elastoplastic --psi P] --pressure-range PMIN PMAX
                          [--rtol 1e-3] [--seating-pressure P0] [--length-scale F] [--stress-scale G]
@@ -22,8 +24,10 @@ A thin layer: parse and validate the arguments, call the library, print the resu
 
 The contact commands (elastic, elastoplastic) take --s, --h (length unit) or --pressure (the
 separation solved, load control); E* as --E-star or --E1 --nu1 [--E2 --nu2] (eq. 42); a second
-rough surface with --second-surface M00 M20 M02 M40 M04 (moments summed). Warnings raised during
-a computation are shown in the text output and as the JSON list "warnings".
+rough surface with --second-surface M00 M20 M02 M40 M04 (moments summed). Wherever the five
+moments are asked, --moments FILE.json reads them (and their unit) from a file, two files for two
+rough surfaces. Warnings raised during a computation are shown in the text output and as the JSON
+list "warnings".
 
 Exit codes: 0 success; 2 bad input (one line on stderr, "roughcontact: error: ...");
 1 a computed value is not finite. Any other exception is a bug and propagates (traceback).
@@ -135,11 +139,16 @@ def _real(text: str) -> float:
 # ---------------------------------------------------------------------------------------
 def _moments_parent() -> argparse.ArgumentParser:
     parent = _Parser(add_help=False)
-    group = parent.add_argument_group("spectral moments (one consistent length unit L)")
+    group = parent.add_argument_group("spectral moments (one consistent length unit L): the five, or --moments")
     for name in _MOMENTS:
         group.add_argument(
-            f"--{name}", type=_real, required=True, metavar="M", help=_MOMENT_HELP[name]
+            f"--{name}", type=_real, default=None, metavar="M", help=_MOMENT_HELP[name]
         )
+    group.add_argument(
+        "--moments", dest="moments_files", nargs="+", default=None, metavar="FILE.json",
+        help="the five moments (and their unit) from a JSON file, e.g. written by roughcontact moments "
+        "SCAN --json; two files: two rough surfaces (moments summed)",
+    )
     return parent
 
 
@@ -170,6 +179,8 @@ def _contact_parent() -> argparse.ArgumentParser:
                         help="integrator: production (numba) or reference (slow twin)")
     parent.add_argument("--accuracy", choices=ACCURACIES, default="table",
                         help="production quadrature preset (default table)")
+    parent.add_argument("--nu", dest="nu", type=_real, default=None, metavar="NU",
+                        help="Poisson's ratio for Mindlin's k_Tx, k_Ty (eq. (96); default: --nu1, else 0.3)")
     return parent
 
 
@@ -216,12 +227,14 @@ def build_parser() -> argparse.ArgumentParser:
     )
     parser.add_argument("--version", action="version", version=f"{PROG} {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
-    from . import contact, fe, measured
+    from . import contact, fe, measured, moments, plot
 
     parents = [_moments_parent(), _output_parent()]
     contact.add_commands(sub, parents)
+    moments.add_command(sub, parents[1:])
     measured.add_commands(sub, parents)
     fe.add_commands(sub, parents)
+    plot.add_command(sub, parents[1:])
     return parser
 
 

@@ -7,7 +7,7 @@ from typing import Any
 
 from ..statistics import SpectralMoments
 from . import (
-    CLOSURES, EP_DEFAULTS, MODELS, SURFACE_UNITS, _MOMENTS, _contact_parent, _real,
+    CLIError, CLOSURES, EP_DEFAULTS, MODELS, SURFACE_UNITS, _MOMENTS, _contact_parent, _real,
     effective_modulus_from,
 )
 
@@ -100,17 +100,82 @@ def _add_mindlin(sub, parents) -> None:
 # handlers: args -> payload (plain JSON-able dict)
 # ---------------------------------------------------------------------------------------
 def _surface_from(args) -> SpectralMoments:
-    """The moments of the command line, plus those of --second-surface where given (the sum:
-    two rough surfaces as one on a flat, SpectralMoments.combined_with)."""
-    surface = SpectralMoments(*(getattr(args, name) for name in _MOMENTS))
+    """The moments of the command line (--m00 … --m04, or --moments FILE [FILE2]), plus those of
+    --second-surface where given (the sum: two rough surfaces as one on a flat,
+    SpectralMoments.combined_with). Sets ``args.moments_unit`` to the files' length unit (None
+    when not known)."""
+    files = getattr(args, "moments_files", None)
+    given = [name for name in _MOMENTS if getattr(args, name) is not None]
     second = getattr(args, "second_surface", None)
+    args.moments_unit = None
+    if files:
+        if given:
+            raise CLIError(f"--moments replaces --{' --'.join(given)}: give the moments one way")
+        if len(files) > 2:
+            raise CLIError(f"--moments takes one file, or two for two rough surfaces; got {len(files)}")
+        if second is not None and len(files) == 2:
+            raise CLIError("two --moments files already give two surfaces: drop --second-surface")
+        return _surfaces_from_files(args, files, second)
+    if len(given) != len(_MOMENTS):
+        missing = [f"--{n}" for n in _MOMENTS if n not in given]
+        raise CLIError(f"the moments are missing: {' '.join(missing)} (or --moments FILE.json)")
+    surface = SpectralMoments(*(getattr(args, name) for name in _MOMENTS))
     return surface if second is None else surface.combined_with(SpectralMoments(*second))
+
+
+def _surfaces_from_files(args, files, second) -> SpectralMoments:
+    from ..readers import load_moments, moments_in_unit
+
+    (surface, unit), *others = [load_moments(f) for f in files]
+    for other, other_unit in others:
+        if (unit is None) != (other_unit is None):
+            raise CLIError(f"{files[0]} and {files[1]}: one states its length unit and the other does not")
+        if unit is not None and other_unit != unit:
+            other = moments_in_unit(other, other_unit, unit)
+        surface = surface.combined_with(other)
+    if second is not None:
+        surface = surface.combined_with(SpectralMoments(*second))
+    args.moments_unit = unit
+    return surface
+
+
+def _tangential(args, surface, stiffness) -> tuple[dict, dict]:
+    """k_Tx, k_Ty per unit nominal area from Mindlin's k_T/k_N (corrected (96)) at the surface's
+    representative contact ellipse (section 8; interface.tangential.representative_aspect), and
+    how they were obtained."""
+    from ..interface.normal_law import mindlin_kT_over_kN
+    from ..interface.tangential import representative_aspect
+
+    if args.nu is not None:
+        nu, source = args.nu, "--nu"
+    elif getattr(args, "nu1", None) is not None:
+        nu, source = args.nu1, "--nu1"
+        if args.E2 != float("inf") and args.nu2 != args.nu1:
+            source += " (body 2 differs; Mindlin's ratio is for bodies with equal elastic constants)"
+    else:
+        nu, source = 0.3, "default (give --nu)"
+    aspect = representative_aspect(surface)
+    ax, ay = mindlin_kT_over_kN(aspect, nu)
+    k = [float(v) for v in stiffness]
+    columns = {"k_Tx": [ax * v for v in k], "k_Ty": [ay * v for v in k]}
+    info = {"model": "Mindlin (1949), eq. (96) corrected, at the representative contact ellipse of the surface "
+                     "(the summit with the rms curvatures sqrt(m40), sqrt(m04); section 8)",
+            "ay2_over_ax2": float(aspect), "nu": float(nu), "nu_source": source,
+            "kT_over_kN_x": float(ax), "kT_over_kN_y": float(ay)}
+    return columns, info
 
 
 def _run_surface(args) -> dict[str, Any]:
     surface = _surface_from(args)
     summary = surface.summary()
-    return {**summary, "units": {k: SURFACE_UNITS[k] for k in summary}}
+    return {**summary, "units": {k: _in_unit(SURFACE_UNITS[k], args.moments_unit) for k in summary}}
+
+
+def _in_unit(text: str, unit: str | None) -> str:
+    """A unit text written with the length unit L, with the moments' unit where it is known."""
+    import re
+
+    return text if unit is None else re.sub(r"\bL\b", unit, text)
 
 
 def _contact(args, surface, compute, **law):
@@ -148,15 +213,20 @@ def _run_elastic(args) -> dict[str, Any]:
                                   method=args.method, accuracy=args.accuracy),
         E_star=E_star, model=args.model,
     )
+    kt, tangential = _tangential(args, surface, curves.stiffness)
     return {
         "s": [float(x) for x in curves.s],
         "h": extra["h"],
         "area_fraction": [float(x) for x in curves.area_fraction],
         "pressure": [float(x) for x in curves.pressure],
         "stiffness": [float(x) for x in curves.stiffness],
+        **kt,
         "pressure_requested": extra["pressure_requested"],
-        "units": dict(curves.units) | {"h": "L (the moments' length unit)",
-                                       "pressure_requested": "unit of E*"},
+        "tangential": tangential,
+        "length_unit": args.moments_unit,
+        "units": {k: _in_unit(v, args.moments_unit) for k, v in curves.units.items()}
+        | {"h": f"{args.moments_unit or 'L'} (the moments' length unit)", "pressure_requested": "unit of E*"}
+        | _kt_units(args),
         "model": curves.model,
         "hertz": curves.hertz,
         "method": curves.method,
@@ -189,18 +259,22 @@ def _run_elastoplastic(args) -> dict[str, Any]:
               "elastoplastic_area_fraction", "plastic_area_fraction", "elastic_pressure",
               "elastoplastic_pressure", "plastic_pressure")
     m = curves.material
+    kt, tangential = _tangential(args, surface, curves.stiffness)
     return {
         "s": [float(x) for x in curves.s],
         "h": extra["h"],
         **{f: [float(x) for x in getattr(curves, f)] for f in fields},
+        **kt,
         "pressure_requested": extra["pressure_requested"],
+        "tangential": tangential,
+        "length_unit": args.moments_unit,
         "psi": float(curves.psi),
         "closure": args.closure or default_closure(args.psi, args.Y),
         "material": {"E_star": m.E_star, "Y": m.Y, "H": m.H, "yield_coefficient": m.yield_coefficient,
                      "c_h": m.c_h, "wp_over_wc": m.wp_over_wc, "K_v": m.K_v},
-        "units": {k: v for k, v in curves.units.items() if k in ("s", *fields)}
-        | {"psi": "1", "material": "stresses in the unit of E*", "h": "L (the moments' length unit)",
-           "pressure_requested": "unit of E*"},
+        "units": {k: _in_unit(v, args.moments_unit) for k, v in curves.units.items() if k in ("s", *fields)}
+        | {"psi": "1", "material": "stresses in the unit of E*", "h": f"{args.moments_unit or 'L'} (the moments' length unit)",
+           "pressure_requested": "unit of E*"} | _kt_units(args),
         "model": "bgk-elastoplastic",
         "hertz": curves.hertz,
         "method": curves.method,
@@ -209,6 +283,11 @@ def _run_elastoplastic(args) -> dict[str, Any]:
         "moments": surface.as_dict(),
         "warnings": extra["warnings"],
     }
+
+
+def _kt_units(args) -> dict[str, str]:
+    L = args.moments_unit or "L"
+    return {k: f"unit of E* per {L} (k_T/A0: Mindlin's k_T/k_N times K/A0)" for k in ("k_Tx", "k_Ty")}
 
 
 def _run_mindlin(args) -> dict[str, Any]:
@@ -258,6 +337,12 @@ def _render_elastic(payload: dict[str, Any]) -> str:
     lines.append("moments: " + "  ".join(f"{k}={v:.8g}" for k, v in payload["moments"].items()))
     if "material" in payload:
         lines.append("material: " + "  ".join(f"{k}={v:.8g}" for k, v in payload["material"].items()))
+    if "tangential" in payload:
+        t = payload["tangential"]
+        lines.append(f"tangential: k_Tx = {t['kT_over_kN_x']:.6g} K, k_Ty = {t['kT_over_kN_y']:.6g} K at "
+                     f"ay^2/ax^2 = {t['ay2_over_ax2']:.6g}, nu = {t['nu']:g} ({t['nu_source']}); {t['model']}")
+    if "length_unit" in payload:
+        lines.append(f"length_unit={payload['length_unit'] or 'not stated (L)'}")
     lines.append("units: " + "; ".join(f"{k}: {v}" for k, v in units.items()))
     lines.append(f"warnings: {len(payload['warnings'])}")
     lines.extend(f"warning: {m}" for m in payload["warnings"])

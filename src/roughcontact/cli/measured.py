@@ -1,5 +1,5 @@
-"""The commands from a measured surface to an FE code: ``moments`` (a height map's spectral
-moments) and ``export`` (the law as an Abaqus / CalculiX / CSV pressure–overclosure table)."""
+"""The command from a surface to an FE code: ``export`` (the law as an Abaqus / CalculiX / CSV
+pressure–overclosure table). The moments of a measured map: :mod:`.moments`."""
 
 from __future__ import annotations
 
@@ -7,15 +7,12 @@ import warnings
 from pathlib import Path
 from typing import Any
 
-import numpy as np
-
 from . import (
-    CLIError, EP_DEFAULTS, _MOMENTS, _add_modulus_options, _real, effective_modulus_from,
+    CLIError, EP_DEFAULTS, _add_modulus_options, _real, effective_modulus_from,
 )
 
-__all__ = ["add_commands", "read_height_map"]
+__all__ = ["add_commands"]
 
-ESTIMATORS = ("spectral", "fd")  # statistics.measure.ESTIMATORS (checked by the tests)
 FORMATS = ("abaqus", "calculix", "csv")  # interface.export.FORMATS
 CANNOT_EXPRESS = {
     "abaqus": ["k_T(p): the stick stiffness follows k_N(p); *FRICTION takes one elastic slip (k_T matches at p0 only)",
@@ -30,37 +27,8 @@ CANNOT_EXPRESS = {
 
 
 def add_commands(sub, parents) -> None:
-    """Register ``moments`` (output parent) and ``export`` (moments and output parents)."""
-    _add_moments(sub, parents[1:])
+    """Register ``export`` (moments and output parents)."""
     _add_export(sub, parents)
-
-
-def _add_moments(sub, parents) -> None:
-    p = sub.add_parser(
-        "moments", parents=parents, help="spectral moments of a measured height map",
-        description="The five moments m00, m20, m02, m40, m04 in the lay frame (x along the lay) of a "
-        "height map z[i, j] at x = j*dx, y = i*dy, with the lay angle, m11 before rotation, m22, m31, "
-        "m13 and the distance from the model's strong-anisotropy assumption. Angular wavenumbers: "
-        "m_pq = integral of qx^p qy^q Phi(q) d2q = the variances of the height derivatives "
-        "(docs/fe-export.md).")
-    p.add_argument("file", help="height map: .npy, or a text/CSV grid (one row of the map per line)")
-    p.add_argument("--dx", type=_real, required=True, metavar="DX", help="sampling interval along x (columns) [L]")
-    p.add_argument("--dy", type=_real, default=None, metavar="DY", help="sampling interval along y (rows) [L] (default dx)")
-    p.add_argument("--z-scale", dest="z_scale", type=_real, default=1.0, metavar="F",
-                   help="multiply the heights by F to express them in the unit of dx (default 1)")
-    p.add_argument("--estimator", choices=ESTIMATORS, default="spectral",
-                   help="spectral (periodogram, default) or fd (central differences)")
-    p.add_argument("--window", choices=("hann", "none"), default="hann",
-                   help="spectral estimator's window: hann (default; measured, non-periodic maps) or none (periodic maps)")
-    p.add_argument("--detrend", choices=("plane", "mean", "none"), default="plane",
-                   help="remove the least-squares plane (default), the mean, or nothing")
-    p.add_argument("--lay-angle", dest="lay_angle", type=_real, default=None, metavar="DEG",
-                   help="the lay angle if known [deg from the map's x axis]; default: found (m11 = 0)")
-    p.add_argument("--length-unit", dest="length_unit", default="L", metavar="NAME",
-                   help="name of the unit of dx for the output (e.g. um)")
-    p.add_argument("--save-rotated", dest="save_rotated", default=None, metavar="FILE.npy",
-                   help="write the map rotated into the lay frame (x along the lay; NaN outside the map)")
-    p.set_defaults(func=_run_moments, render=_render_moments)
 
 
 def _add_export(sub, parents) -> None:
@@ -97,81 +65,6 @@ def _add_export(sub, parents) -> None:
                    help="fail if more rows are needed (calculix: 200 always)")
     p.add_argument("-o", "--output", default=None, metavar="FILE", help="write the table to FILE")
     p.set_defaults(func=_run_export, render=_render_export)
-
-
-# ---------------------------------------------------------------------------------------
-def read_height_map(path: str) -> np.ndarray:
-    """A 2-d height map from .npy or a text/CSV grid (comma, semicolon or whitespace separated,
-    '#' comments)."""
-    file = Path(path)
-    if not file.is_file():
-        raise CLIError(f"no such file: {path}")
-    if file.suffix.lower() == ".npy":
-        z = np.load(file, allow_pickle=False)
-    else:
-        text = file.read_text()
-        first = next((line for line in text.splitlines() if line.strip() and not line.lstrip().startswith("#")), "")
-        delimiter = "," if "," in first else (";" if ";" in first else None)
-        try:
-            z = np.loadtxt(file, delimiter=delimiter, comments="#", ndmin=2)
-        except ValueError as exc:
-            raise CLIError(f"{path}: not a numeric grid ({exc})") from None
-    return np.asarray(z, dtype=float)
-
-
-def _run_moments(args) -> dict[str, Any]:
-    from ..contact.validity import relay_warnings
-    from ..statistics.measure import measure_heights, rotate_map
-
-    z = read_height_map(args.file) * args.z_scale
-    options = {"estimator": args.estimator, "window": args.window, "detrend": args.detrend}
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        r = measure_heights(z, args.dx, args.dy, lay_angle_deg=args.lay_angle, **options)
-        # the band-limit dependence: the same map sampled at twice the interval, same lay angle
-        coarse = None
-        if min(z.shape) >= 10:
-            try:
-                coarse = measure_heights(z[::2, ::2], 2 * r.dx, 2 * r.dy, lay_angle_deg=r.lay_angle_deg,
-                                         **options).moments.as_dict()
-            except ValueError:  # the coarser map may fall outside the model (mu <= 0)
-                coarse = None
-        if args.save_rotated:
-            np.save(args.save_rotated, rotate_map(z, r.dx, r.dy, r.lay_angle_deg))
-    L = args.length_unit
-    return {
-        **r.moments.as_dict(),
-        "lay_angle_deg": r.lay_angle_deg,
-        "m11_map": r.m11_map,
-        "m22": r.lay["m22"], "m31": r.lay["m31"], "m13": r.lay["m13"],
-        "anisotropy": r.anisotropy(),
-        "at_twice_the_interval": coarse,
-        "ratio_to_twice_the_interval": None if coarse is None else
-        {k: getattr(r.moments, k) / v for k, v in coarse.items()},
-        "estimator": r.estimator, "window": r.window, "detrend": r.detrend,
-        "dx": r.dx, "dy": r.dy, "shape": list(z.shape),
-        "units": {"m00": f"{L}^2", "m20": "1", "m02": "1", "m40": f"1/{L}^2", "m04": f"1/{L}^2",
-                  "m11_map": "1", "m22": f"1/{L}^2", "m31": f"1/{L}^2", "m13": f"1/{L}^2",
-                  "lay_angle_deg": "deg (from the map's x axis to the lay, counter-clockwise)",
-                  "dx": L, "dy": L, "wavenumbers": "angular (rad per unit length), no 2*pi in m_pq",
-                  "at_twice_the_interval": "as m00 ... m04: the map sampled at 2 dx, 2 dy (band-limit check)"},
-        "warnings": relay_warnings(caught),
-    }
-
-
-def _render_moments(payload: dict[str, Any]) -> str:
-    u = payload["units"]
-    lines = [f"{k:<24}{payload[k]:>16.8g}  {u[k]}" for k in (*_MOMENTS, "lay_angle_deg", "m11_map", "m22", "m31", "m13")]
-    lines += [f"{k:<24}{v:>16.8g}" for k, v in payload["anisotropy"].items()]
-    if payload["ratio_to_twice_the_interval"] is not None:
-        lines.append("at 2dx, 2dy:  " + "  ".join(f"{k}={v:.6g}" for k, v in payload["at_twice_the_interval"].items()))
-        lines.append("ratio dx/2dx: " + "  ".join(f"{k}={v:.4g}" for k, v in payload["ratio_to_twice_the_interval"].items())
-                     + "  (far from 1 for m40, m04: the spectrum is not resolved at this scale, docs/fe-export.md)")
-    lines += [f"estimator={payload['estimator']}  window={payload['window']}  detrend={payload['detrend']}  "
-              f"dx={payload['dx']:g} {u['dx']}  dy={payload['dy']:g} {u['dy']}  shape={payload['shape']}",
-              f"wavenumbers: {u['wavenumbers']}", f"warnings: {len(payload['warnings'])}"]
-    lines += [f"warning: {m}" for m in payload["warnings"]]
-    return "\n".join(lines)
 
 
 def _run_export(args) -> dict[str, Any]:
@@ -214,6 +107,7 @@ def _run_export(args) -> dict[str, Any]:
         **table.summary(),
         "law": args.law,
         "moments": surface.as_dict(),
+        "moments_unit": args.moments_unit,
         "length_scale": args.length_scale, "stress_scale": args.stress_scale,
         "units": {"pressure": args.stress_unit, "overclosure": args.length_unit,
                   "h_ref": "the moments' length unit", "zero_pressure_overclosure": "the moments' length unit"},

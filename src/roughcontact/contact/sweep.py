@@ -275,12 +275,32 @@ def axis_values(axis) -> np.ndarray:
     return np.atleast_1d(np.asarray(axis, dtype=float))
 
 
+def _fixed_with_moments_file(cfg: Mapping, units: Mapping[str, str] | None) -> dict:
+    fixed = dict(cfg.get("fixed", {}))
+    if not cfg.get("moments"):
+        return fixed
+    from ..readers import load_moments, moments_in_unit
+
+    moments, unit = load_moments(cfg["moments"])
+    length = (units or {}).get("length")
+    if unit is not None and length is not None:
+        moments = moments_in_unit(moments, unit, length)
+    for name, value in moments.as_dict().items():
+        if name in fixed:
+            raise ValueError(f"{name} is both in fixed and in the moments file {cfg['moments']}")
+        if name not in cfg["axes"]:
+            fixed[name] = value
+    return fixed
+
+
 def spec_from_config(cfg: Mapping, units: Mapping[str, str] | None = None) -> SweepSpec:
-    """A SweepSpec from a ``sweeps:`` entry of config/config.yaml (axes as lists or grids)."""
+    """A SweepSpec from a ``sweeps:`` entry of config/config.yaml (axes as lists or grids).
+    ``moments: FILE.json`` (e.g. written by ``roughcontact moments SCAN --json``) fixes the five
+    moments that are not swept, converted into ``units["length"]`` when the file states its unit."""
     return SweepSpec(
         axes={k: axis_values(v) for k, v in cfg["axes"].items()},
         s=axis_values(cfg["s"]),
-        fixed=dict(cfg.get("fixed", {})),
+        fixed=_fixed_with_moments_file(cfg, units),
         closure=cfg.get("closure"),
         hertz=cfg.get("hertz", "exact"),
         accuracy=cfg.get("accuracy", "plot"),

@@ -14,7 +14,10 @@ stiffnesses, and one of the friction models (``Frictionless``, ``NoSlip``,
   Δu_law = 1000 Δδ and D_engine = 1000 D_law (N/(mm²·µm) → N/mm³);
 * converts the sign with :data:`~roughcontact.interface.friction.OPENING_SIGN`
   (the friction module owns the convention: u_N closes, p_N ≥ 0);
-* keeps the committed state of every point and the trial state of the current iteration.
+* keeps the committed state of every point and the trial state of the current iteration;
+* gives the solver's trial states a response past the heavy end of a tabulated law
+  (``respond(..., extrapolate=True)``: the law's tangent tail, InterfaceLaw.extrapolated) and
+  says which converged states lie beyond it (:meth:`InterfaceMaterial.beyond_table`).
 
 The state columns are friction's (T_X, T_Y, T_N = p_N, U_N = closure in the law's unit, …);
 u_N = 0 is the law's reference state (the seating pressure p0 of the InterfaceLaw).
@@ -22,6 +25,7 @@ u_N = 0 is the law's reference state (the seating pressure p0 of the InterfaceLa
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 from typing import NamedTuple
@@ -99,13 +103,30 @@ class InterfaceMaterial:
         """Virgin states (n_points, 9) at closure ``closure0`` (p_N from the normal law)."""
         return friction.initial_state(n_points, u_N=self.closure0, k_N=self._stiffness[0])
 
-    def respond(self, committed: np.ndarray, d_jump) -> LawResponse:
-        """The law for the jump increment d_jump (n, 3) [mm] since the committed states."""
+    def respond(self, committed: np.ndarray, d_jump, *, extrapolate: bool = False) -> LawResponse:
+        """The law for the jump increment d_jump (n, 3) [mm] since the committed states.
+        ``extrapolate``: past the heavy end of a tabulated law its tangent tail instead of a
+        ValueError (for trial states; judge converged ones with :meth:`beyond_table`)."""
         du = np.asarray(d_jump, dtype=float) * _S * self.length_per_mm
-        new = friction.update(self.model, committed, du, *self._stiffness, tangential=self.tangential_form)
+        stiffness = self._stiffness
+        if extrapolate and isinstance(self.normal, InterfaceLaw):
+            stiffness = (self._extrapolated,)
+        new = friction.update(self.model, committed, du, *stiffness, tangential=self.tangential_form)
         tractions = new.state[:, :3] * _S
         tangent = new.D * (_S[:, None] * _S[None, :]) * self.length_per_mm
         return LawResponse(tractions, tangent, new.state, new.status)
+
+    @functools.cached_property
+    def _extrapolated(self):
+        return self.normal.extrapolated()
+
+    def beyond_table(self, state: np.ndarray) -> np.ndarray:
+        """(n,) True where a state's closure lies past the heavy end of the tabulated law
+        (u_N > u_max, p_N > p_max); all False for a constant k_N."""
+        closure = np.asarray(state)[..., friction.U_N]
+        if not isinstance(self.normal, InterfaceLaw):
+            return np.zeros(closure.shape, dtype=bool)
+        return closure > self.normal.u_max
 
     def closure_mm(self, state: np.ndarray) -> np.ndarray:
         """Closure u_N (n,) [mm] of states (relative to the law's reference state)."""

@@ -49,11 +49,19 @@ class InterfaceLaws:
         """The same laws, starting from the committed ``state`` (the next step)."""
         return replace(self, start_state=np.array(state, copy=True))
 
-    def respond(self, committed: np.ndarray, d_jump) -> LawResponse:
-        out = [m.respond(committed[a:b], d_jump[a:b]) for m, a, b in self.parts]
+    def respond(self, committed: np.ndarray, d_jump, *, extrapolate: bool = False) -> LawResponse:
+        out = [m.respond(committed[a:b], d_jump[a:b], extrapolate=extrapolate) for m, a, b in self.parts]
         if len(out) == 1:
             return out[0]
         return LawResponse(*(np.concatenate([getattr(r, f) for r in out]) for f in LawResponse._fields))
+
+    def beyond_table(self, state: np.ndarray) -> np.ndarray:
+        """(n,) True where a converged state lies past the heavy end of its tabulated law."""
+        return np.concatenate([m.beyond_table(state[a:b]) for m, a, b in self.parts])
+
+    def normal_of(self, point: int):
+        """The normal law of interface point ``point`` (the solver's range message)."""
+        return next(m.normal for m, a, b in self.parts if a <= point < b)
 
     def closure_mm(self, state: np.ndarray) -> np.ndarray:
         """Closure from each law's reference state, in the deck's length unit."""

@@ -18,27 +18,48 @@ Convergence (all three, checked after every iteration):
                 move far as a rigid body, K u ≈ 0 while |K| |u| is large);
 * increment:    ‖Δu‖_∞ ≤ displacement_rtol·‖u − u_n‖_∞ + displacement_atol [mm] (last correction);
 * active set:   no interface point changed status (stick / slip / open) in the last iteration.
-Non-convergence (iteration limit, a non-finite residual, a singular tangent or a closure beyond
-the heavy end of a tabulated law) halves the step back to the last converged state (the step
-doubles again after every converged sub-step); after ``max_cutbacks`` halvings
+Non-convergence (iteration limit, a non-finite residual, a singular tangent, or a trial closure
+beyond even the extrapolated tail of a tabulated law) halves the step back to the last converged
+state (the step doubles again after every converged sub-step); after ``max_cutbacks`` halvings
 :class:`ConvergenceError` names the increment, the load level and the residual. Never a silently
 wrong answer: every converged increment records its residual history and the equilibrium error
 (applied load vs integrated interface pressure).
 
-Linear solves: ``"condensed"`` (default) factors the bulk once, condenses it onto the interface
-dofs (dense Schur complement S = K_II − K_IR K_RR⁻¹ K_RI) and per iteration solves the dense
-(S + K_int) system (Cholesky when the interface tangent is symmetric) plus one or two sparse
-back-substitutions; ``"sparse"`` refactors the whole sparse tangent (SuperLU, ordering of
-Aᵀ + A) every iteration. The Newton loop runs with ``blas_threads`` BLAS threads (1: on
-these dense systems of a few hundred to a few thousand unknowns a second thread costs more
-than it gains, and on a loaded machine far more). ``make bench-fe`` measures both strategies
-(results/benchmarks/fe_linear_solvers.md; environment-notes.md records the choice).
+The law's range. Trial states (the iterations) see the tabulated law continued past its heavy
+end by its tangent (``InterfaceMaterial.respond(..., extrapolate=True)``,
+:meth:`~roughcontact.interface.InterfaceLaw.extrapolated`): from a soft seated state the first
+Newton step of a stiffening law overshoots far past the table, and refusing that iterate stopped
+a block on a base loaded from zero at its first increment (issue 23). The range is judged on
+the converged state: a converged state past the heavy end raises :class:`LawRangeError` (a
+ConvergenceError) naming the increment, the level, the pressure reached and p_max.
+
+Line search (``line_search``, on by default). The full Newton step is taken when it does not
+increase ‖r‖; otherwise the step is shortened by the minimiser of the quadratic through
+‖r‖²(0), its slope −2‖r‖²(0) along the Newton direction and ‖r‖²(α) (within [α/10, α/2]) until
+‖r(α)‖ ≤ (1 − 10⁻⁴ α) ‖r(0)‖, at most 8 times (then the best step is taken). A step into the
+region past even the tail counts as an infinite residual. It changes the path, not the
+converged answer (tests: the beam's and punch's results unchanged to 1e-13).
+
+Linear solves (``linear_solver``): ``"condensed"`` condenses the bulk onto the interface dofs I:
+one SuperLU factorisation of K + αP_I with the bulk dofs first (nested dissection by the node
+coordinates, :mod:`.ordering`) and I last gives the dense Schur complement
+S = K_II − K_IR K_RR⁻¹ K_RI from its trailing factor blocks; each iteration then factors the dense
+(S + K_int) (Cholesky when the interface tangent is symmetric, LU otherwise) and does two sparse
+solves (:class:`_Condensed`). ``"sparse"`` refactors the whole sparse tangent every iteration
+(SuperLU in the same nested-dissection order). ``"auto"`` (default) is "condensed" up to
+AUTO_CONDENSED_MAX = 6000 interface dofs and "sparse" beyond: the dense factorisation grows as
+n_I³/3 (0.5 s at 3750 on one core, 7 s at 8000 — a sparse factorisation of the 65 k-dof
+benchmark costs 20 s) and S needs 8 n_I² bytes. The Newton loop runs with ``blas_threads`` BLAS
+threads (1: on these dense systems a second thread costs more than it gains, and on a loaded
+machine far more). ``make bench-fe`` measures the strategies and the engine against CalculiX
+(docs/performance.md, "FE engine"; environment-notes.md records the choice of solver).
 """
 
 from __future__ import annotations
 
 import math
 import time
+import warnings
 from dataclasses import dataclass, field
 from typing import Callable, Sequence
 
@@ -48,17 +69,23 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from ..interface import friction
-from . import assembly
+from . import assembly, ordering
 from .contact import InterfaceMaterial
 from .interface_points import InterfacePoints, interface_forces, interface_points, interface_tangent
 
-__all__ = ["ContactModel", "NewtonOptions", "Increment", "Solution", "ConvergenceError", "solve"]
+__all__ = ["ContactModel", "NewtonOptions", "Increment", "Solution", "ConvergenceError", "LawRangeError", "solve"]
 
 #: the round-off floor of a residual r = F − K u − f: this many ulps of |K| |u|
 _ROUNDOFF = 1e3 * np.finfo(float).eps
 #: a Newton correction this many times the displacements so far (or 1 m) is a singular tangent
 _DIVERGED = 1e6
 _DIVERGED_FLOOR = 1e3  # mm
+#: step-length reductions of the line search before the shortest step is taken as it is
+_BACKTRACKS = 8
+#: the linear strategies; "auto" takes "condensed" up to this many interface dofs, "sparse"
+#: beyond (module docstring, "Linear solves")
+LINEAR_SOLVERS = ("auto", "condensed", "sparse")
+AUTO_CONDENSED_MAX = 6000
 
 
 class ConvergenceError(RuntimeError):
@@ -68,6 +95,17 @@ class ConvergenceError(RuntimeError):
         self.increment, self.level, self.residual, self.reason = increment, level, residual, reason
         super().__init__(f"no convergence at increment {increment} (load level {level:.6g}): "
                          f"{reason}; residual {residual:.3e} N after the allowed cut-backs")
+
+
+class LawRangeError(ConvergenceError):
+    """A converged state lies past the heavy end of the tabulated interface law: the answer
+    would rest on the law's extrapolated tail (trial states only), not on the statistical model.
+    A :class:`ConvergenceError` (no valid state at that increment) with its own message."""
+
+    def __init__(self, increment: int, level: float, residual: float, reason: str):
+        RuntimeError.__init__(self, f"increment {increment} (load level {level:.6g}) converged beyond the "
+                                    f"tabulated interface law: {reason}")
+        self.increment, self.level, self.residual, self.reason = increment, level, residual, reason
 
 
 @dataclass(frozen=True)
@@ -80,12 +118,14 @@ class NewtonOptions:
     displacement_rtol: float = 1e-8
     displacement_atol: float = 1e-12
     max_cutbacks: int = 6
-    linear_solver: str = "condensed"
+    linear_solver: str = "auto"
     blas_threads: int | None = 1
+    line_search: bool = True
 
     def __post_init__(self):
-        if self.linear_solver not in ("condensed", "sparse"):
-            raise ValueError(f"linear_solver must be 'condensed' or 'sparse', got {self.linear_solver!r}")
+        if self.linear_solver not in LINEAR_SOLVERS:
+            raise ValueError(f"linear_solver must be one of {', '.join(map(repr, LINEAR_SOLVERS))}, "
+                             f"got {self.linear_solver!r}")
         if self.blas_threads is not None and not (isinstance(self.blas_threads, int) and self.blas_threads >= 1):
             raise ValueError(f"blas_threads must be a positive integer or None, got {self.blas_threads!r}")
         if not (self.max_iterations >= 1 and self.max_cutbacks >= 0):
@@ -99,7 +139,9 @@ class NewtonOptions:
 class ContactModel:
     """The discrete problem: bulk stiffness K (3N × 3N) [N/mm], interface points, interface
     material, supported dofs (u = 0), the load pattern F (3N,) [N per unit load level] and a
-    dead load F₀ (3N,) [N] present at every level (None: zero)."""
+    dead load F₀ (3N,) [N] present at every level (None: zero); optionally the node
+    ``coordinates`` (N, 3) [mm], which give the linear solvers a fill-reducing ordering
+    (:mod:`.ordering`; :meth:`assemble` passes the mesh's)."""
 
     stiffness: sp.csr_matrix
     points: InterfacePoints
@@ -108,6 +150,7 @@ class ContactModel:
     load: np.ndarray
     dead_load: np.ndarray | None = None
     _cache: dict = field(default_factory=dict, repr=False)
+    coordinates: np.ndarray | None = field(default=None, repr=False)
 
     def __post_init__(self):
         n = self.stiffness.shape[0]
@@ -127,6 +170,11 @@ class ContactModel:
             raise ValueError("the interface points belong to another mesh")
         object.__setattr__(self, "fixed", fixed)
         object.__setattr__(self, "load", load)
+        if self.coordinates is not None:
+            x = np.asarray(self.coordinates, dtype=float)
+            if x.shape != (n // 3, 3) or not np.all(np.isfinite(x)):
+                raise ValueError(f"coordinates must be finite node positions of shape ({n // 3}, 3)")
+            object.__setattr__(self, "coordinates", x)
 
     @classmethod
     def assemble(cls, mesh, elasticity, material: InterfaceMaterial, fixed, load, *, dead_load=None,
@@ -137,13 +185,13 @@ class ContactModel:
         blocks = [(b.element, b.cells) for b in mesh.blocks]
         D = [elasticity[b.name] for b in mesh.blocks] if isinstance(elasticity, dict) else elasticity
         K = assembly.stiffness(mesh.points, blocks, D)
-        return cls(K, interface_points(mesh, rule, lay), material, fixed, load, dead_load)
+        return cls(K, interface_points(mesh, rule, lay), material, fixed, load, dead_load, coordinates=mesh.points)
 
     def with_material(self, material: InterfaceMaterial) -> "ContactModel":
         """The same bodies, supports and loads with another interface material, sharing this
         model's factorised bulk (the linear solvers depend on K, B, the supports and loads only)."""
         return ContactModel(self.stiffness, self.points, material, self.fixed, self.load, self.dead_load,
-                            self._cache)
+                            self._cache, self.coordinates)
 
     @property
     def free(self) -> np.ndarray:
@@ -231,75 +279,99 @@ class Solution:
 # ---------------------------------------------------------------------------------------------
 # linear solvers
 # ---------------------------------------------------------------------------------------------
-def _splu(A, symmetric: bool):
-    """SuperLU with a fill-reducing ordering of Aᵀ + A (3× less fill than COLAMD on these
-    stiffness matrices, benchmarks/fe_beam.py); diagonal pivoting when A is symmetric."""
-    return spla.splu(A.tocsc(), permc_spec="MMD_AT_PLUS_A", options=dict(SymmetricMode=symmetric))
-
-
 def _symmetric(D) -> bool:
     return bool(np.allclose(D, np.swapaxes(D, -1, -2), rtol=1e-12, atol=0.0))
 
 
+def _dense_solve(A, b, symmetric: bool):
+    """A x = b for a dense A that may be overwritten: Cholesky when symmetric (LinAlgError when
+    not positive definite), else LU (LinAlgError on a zero pivot); no condition estimate (half
+    the time of scipy.linalg.solve on 2000 unknowns: the Newton loop checks its steps)."""
+    if symmetric:
+        return la.cho_solve(la.cho_factor(A, overwrite_a=True, check_finite=False), b, check_finite=False)
+    with warnings.catch_warnings():  # a zero pivot is raised just below, not warned about
+        warnings.simplefilter("ignore", la.LinAlgWarning)
+        lu, piv = la.lu_factor(A, overwrite_a=True, check_finite=False)
+    if not np.all(np.diagonal(lu)):
+        raise np.linalg.LinAlgError("singular matrix (a zero pivot)")
+    return la.lu_solve((lu, piv), b, check_finite=False)
+
+
+def _ordered(model: ContactModel, K, dofs) -> np.ndarray:
+    """A fill-reducing order of ``dofs`` (indices of the free dofs): nested dissection by the
+    node coordinates when the model has them, else reverse Cuthill–McKee (:mod:`.ordering`)."""
+    return ordering.dof_order(K, dofs, model.free // 3, model.coordinates)
+
+
 class _Sparse:
-    """The full tangent, refactored every iteration."""
+    """The full tangent, refactored every iteration (SuperLU in a nested-dissection order;
+    diagonal pivoting when the tangent is symmetric)."""
 
     def __init__(self, model: ContactModel):
         free = model.free
-        self.K = model.stiffness[free][:, free].tocsc()
-        self.B = model.points.B[:, free].tocsr()
+        K = model.stiffness[free][:, free].tocsr()
+        self.order = _ordered(model, K, np.arange(free.size))
+        self.K = K[self.order][:, self.order].tocsc()
+        self.B = model.points.B[:, free[self.order]].tocsr()
 
     def __call__(self, points, D, r, u, level):
-        Kt = self.K + interface_tangent(_restricted(points, self.B), D)
-        return _splu(Kt, _symmetric(D)).solve(r)
+        Kt = (self.K + interface_tangent(_restricted(points, self.B), D)).tocsc()
+        symmetric = _symmetric(D)
+        lu = spla.splu(Kt, permc_spec="NATURAL", options=dict(SymmetricMode=symmetric),
+                       **({"diag_pivot_thresh": 0.0} if symmetric else {}))
+        du = np.empty(r.size)
+        du[self.order] = lu.solve(r[self.order])
+        return du
 
 
 class _Condensed:
-    """The bulk factored once and condensed onto the interface dofs (module docstring). The
-    dense system is solved by Cholesky when the interface tangent is symmetric (no friction
-    or associated slip), by LU otherwise. X = K_RR⁻¹K_RI is kept when it fits in
-    ``keep_bytes``; then no iteration needs a sparse solve: the bulk rows R carry no interface
-    term, so their residual r_R = F₀_R + λF_R − K_RR u_R − K_RI u_I is linear and
-    K_RR⁻¹ r_R = a₀ + λa₁ − u_R − X u_I with a₀ = K_RR⁻¹F₀_R, a₁ = K_RR⁻¹F_R computed once."""
+    """The bulk condensed onto the interface dofs I (module docstring, "Linear solves").
 
-    keep_bytes = 256 * 2**20
+    Set-up, once: the free dofs are ordered bulk R first (nested dissection), I last, and
+    M = K + α P_I (α the mean diagonal of K_II, P_I the identity on I) is factored by SuperLU
+    in that order without pivoting (M is symmetric positive definite). With I last, the
+    trailing blocks of the factors give the Schur complement directly:
+    L_II U_II = S + αI, S = K_II − K_IR K_RR⁻¹ K_RI — one sparse factorisation instead of a
+    solve for every interface dof (4× less time on 16 k dofs, and the factor of the
+    interior is the same work).
+
+    Per iteration, with K_t,II = Bᵀ diag(w D) B on I: x = M⁻¹ r gives the condensed right-hand
+    side b_I = (S + αI) x_I = r_I − K_IR K_RR⁻¹ r_R; the dense (S + K_t,II) du_I = b_I (Cholesky
+    when the interface tangent is symmetric, LU otherwise); then
+    du = x + M⁻¹ [0; (S + αI)(du_I − x_I)] (its R part is K_RR⁻¹(r_R − K_RI du_I)). Two sparse
+    solves and one dense factorisation of n_I unknowns."""
 
     def __init__(self, model: ContactModel):
         free = model.free
         K = model.stiffness[free][:, free].tocsr()
         B = model.points.B[:, free].tocsc()
         on_interface = np.diff(B.indptr) > 0
-        self.I = np.flatnonzero(on_interface)
-        self.R = np.flatnonzero(~on_interface)
-        self.B_I = B[:, self.I].tocsr()
-        self.K_RR = _splu(K[self.R][:, self.R], True)
-        K_RI = K[self.R][:, self.I].tocsc()
-        self.K_IR = K[self.I][:, self.R].tocsr()
-        keep = 8 * self.R.size * self.I.size <= self.keep_bytes
-        X = np.empty((self.R.size, self.I.size)) if keep else None
-        S = K[self.I][:, self.I].toarray()
-        for j0 in range(0, self.I.size, 256):  # K_RR⁻¹ K_RI in column blocks (bounded memory)
-            block = self.K_RR.solve(K_RI[:, j0:j0 + 256].toarray())
-            S[:, j0:j0 + 256] -= self.K_IR @ block
-            if keep:
-                X[:, j0:j0 + 256] = block
-        self.S = 0.5 * (S + S.T)  # symmetric up to round-off: make it exactly so
-        self.X, self.K_RI = X, K_RI
-        self.a0 = self.K_RR.solve(model.dead_load[free][self.R])
-        self.a1 = self.K_RR.solve(model.load[free][self.R])
-        self.n = free.size
+        I, R = np.flatnonzero(on_interface), np.flatnonzero(~on_interface)
+        self.order = np.concatenate([_ordered(model, K, R), I])
+        self.n_R, self.n = R.size, free.size
+        self.B_I = B[:, I].tocsr()
+        alpha = float(np.mean(K.diagonal()[I])) if I.size else 1.0
+        M = K[self.order][:, self.order] + sp.diags(np.r_[np.zeros(R.size), np.full(I.size, alpha)])
+        self.lu = spla.splu(M.tocsc(), permc_spec="NATURAL", diag_pivot_thresh=0.0,
+                            options=dict(SymmetricMode=True))
+        identity = np.arange(self.n)
+        if not (np.array_equal(self.lu.perm_c, identity) and np.array_equal(self.lu.perm_r, identity)):
+            raise RuntimeError("SuperLU reordered the condensed system; use linear_solver='sparse'")
+        L_II = self.lu.L[R.size:, R.size:].toarray()  # one factor at a time: bounded memory
+        S_alpha = L_II @ self.lu.U[R.size:, R.size:].toarray()
+        del L_II
+        self.S_alpha = 0.5 * (S_alpha + S_alpha.T)  # symmetric up to round-off: make it exactly so
+        self.S = self.S_alpha - alpha * np.eye(I.size)
 
     def __call__(self, points, D, r, u, level):
-        if self.X is not None:
-            y = self.a0 + level * self.a1 - u[self.R] - self.X @ u[self.I]  # = K_RR⁻¹ r_R (class docstring)
-        else:
-            y = self.K_RR.solve(r[self.R])
+        x = self.lu.solve(r[self.order])
+        x_I = x[self.n_R:]
         A = self.S + interface_tangent(_restricted(points, self.B_I), D).toarray()
-        b = r[self.I] - self.K_IR @ y
-        du_I = la.solve(A, b, assume_a="pos" if _symmetric(D) else "gen", check_finite=True)
+        du_I = _dense_solve(A, self.S_alpha @ x_I, _symmetric(D))
+        correction = np.zeros(self.n)
+        correction[self.n_R:] = self.S_alpha @ (du_I - x_I)
         du = np.empty(self.n)
-        du[self.I] = du_I
-        du[self.R] = y - (self.X @ du_I if self.X is not None else self.K_RR.solve(self.K_RI @ du_I))
+        du[self.order] = x + self.lu.solve(correction)
         return du
 
 
@@ -309,7 +381,22 @@ def _restricted(points: InterfacePoints, B) -> InterfacePoints:
                            points.nodes, points.rule)
 
 
+def interface_dofs(model: ContactModel) -> int:
+    """The number of free dofs the interface touches (both sides): the size of the condensed
+    dense system."""
+    return int(np.count_nonzero(np.diff(model.points.B[:, model.free].tocsc().indptr) > 0))
+
+
+def linear_strategy(model: ContactModel, kind: str = "auto") -> str:
+    """The linear strategy ``kind`` resolves to: "auto" is "condensed" while the interface has
+    at most AUTO_CONDENSED_MAX interface dofs, else "sparse" (module docstring)."""
+    if kind != "auto":
+        return kind
+    return "condensed" if interface_dofs(model) <= AUTO_CONDENSED_MAX else "sparse"
+
+
 def _linear_solver(model: ContactModel, kind: str):
+    kind = linear_strategy(model, kind)
     key = ("linear", kind)
     if key not in model._cache:
         model._cache[key] = (_Condensed if kind == "condensed" else _Sparse)(model)
@@ -324,17 +411,23 @@ def _newton(model, solver, opts, level, u_n, state_n, guess):
     ``guess``. Returns (u, response, residuals) or raises _Failed."""
     free, points, material = model.free, model.points, model.material
     jumps_n = points.jumps(u_n)
-    u = guess.copy()
     f_ext = model.dead_load + level * model.load
-    residuals, last_du, last_status = [], None, None
-    for it in range(opts.max_iterations + 1):
-        try:
-            resp = material.respond(state_n, points.jumps(u) - jumps_n)
-        except ValueError as exc:  # beyond the heavy end of a tabulated law
-            raise _Failed(residuals[-1] if residuals else math.inf, str(exc)) from None
+
+    def evaluate(u):
+        """(law response, free residual, its norm, interface forces); the response of a trial
+        state past the heavy end of a tabulated law comes from its extrapolated tail."""
+        resp = material.respond(state_n, points.jumps(u) - jumps_n, extrapolate=True)
         f_int_iface = interface_forces(points, resp.tractions)
         r = (f_ext - model.stiffness @ u - f_int_iface)[free]
-        norm = float(np.linalg.norm(r))
+        return resp, r, float(np.linalg.norm(r)), f_int_iface
+
+    u = guess.copy()
+    try:
+        resp, r, norm, f_int_iface = evaluate(u)
+    except ValueError as exc:  # beyond even the extrapolated tail of a tabulated law (or overflow)
+        raise _Failed(math.inf, str(exc)) from None
+    residuals, last_du, last_status = [], None, None
+    for it in range(opts.max_iterations + 1):
         residuals.append(norm)
         if not math.isfinite(norm):
             raise _Failed(norm, "non-finite residual")
@@ -355,8 +448,56 @@ def _newton(model, solver, opts, level, u_n, state_n, guess):
             raise _Failed(norm, f"singular tangent ({exc})") from None
         if not np.all(np.isfinite(du)) or np.max(np.abs(du)) > _DIVERGED * max(np.max(np.abs(u)), _DIVERGED_FLOOR):
             raise _Failed(norm, "singular tangent (the Newton step diverged)")
-        u[free] += du
-        last_du, last_status = du, resp.status
+        last_status = resp.status
+        u, du, (resp, r, norm, f_int_iface) = _line_search(evaluate, u, free, du, norm, opts.line_search)
+        last_du = du
+
+
+def _line_search(evaluate, u, free, du, norm0, enabled):
+    """The Newton step u + α du (module docstring, "Line search"): α = 1 unless the residual
+    norm grows; then backtracking on φ(α) = ‖r(u + α du)‖² with the minimiser of the quadratic
+    through φ(0), φ'(0) = −2φ(0) (the Newton direction) and φ(α), kept within [α/10, α/2], until
+    ‖r‖ ≤ (1 − 10⁻⁴ α) ‖r(0)‖; after _BACKTRACKS reductions the best step tried is taken.
+    Returns (u, α du, evaluation)."""
+    trial = u.copy()
+    alpha, best = 1.0, None
+    phi0 = norm0 ** 2
+    for k in range(_BACKTRACKS + 1):
+        trial[free] = u[free] + alpha * du
+        try:
+            ev = evaluate(trial)
+        except ValueError:  # past even the extrapolated tail: the step is far too long
+            ev = None
+        norm = ev[2] if ev is not None else math.inf
+        if ev is not None and (best is None or norm < best[1][2]):
+            best = (alpha, ev)
+        if not enabled or norm <= (1.0 if k == 0 else 1.0 - 1e-4 * alpha) * norm0:
+            break
+        phi = norm ** 2
+        ratio = phi0 * alpha / (phi - phi0 + 2.0 * phi0 * alpha) if math.isfinite(phi) else 0.0
+        alpha *= min(max(ratio, 0.1), 0.5)
+    else:  # no step met the criterion: the best one tried
+        ev = None
+    if ev is None:
+        if best is None:
+            raise _Failed(norm0, "every step length leads past the extrapolated tail of the interface law")
+        alpha, ev = best
+        trial[free] = u[free] + alpha * du
+    return trial, alpha * du, ev
+
+
+def _check_range(material: InterfaceMaterial, resp, increment: int, level: float, residual: float):
+    """LawRangeError when a converged state lies past the heavy end of the tabulated law (the
+    iterations may cross it: they see the law's extrapolated tail)."""
+    beyond = material.beyond_table(resp.state)
+    if beyond.any():
+        bad = np.flatnonzero(beyond)
+        law = material.normal_of(bad[0]) if hasattr(material, "normal_of") else material.normal  # a deck's laws
+        raise LawRangeError(increment, level, residual, (
+            f"p_N up to {np.max(resp.state[bad, friction.T_N]):.6g} at {bad.size} interface points "
+            f"(first {bad[:10].tolist()}), u_N up to {np.max(resp.state[bad, friction.U_N]):.6g} "
+            f"> u_max = {law.u_max:.6g} (p_max = {law.table.p_max:.6g}) in the law's length unit; "
+            "rebuild the table with a larger p_max (pressure_range)"))
 
 
 class _Failed(Exception):
@@ -404,6 +545,7 @@ def _solve(model, levels, opts, progress) -> Solution:
                     raise ConvergenceError(k + 1, trial, fail.residual, fail.reason) from None
                 step *= 0.5
                 continue
+            _check_range(model.material, resp, k + 1, trial, residuals[-1])
             rate = (u_new - u) / (trial - level) if trial != level else None
             u, state, level = u_new, resp.state, trial
             iterations += len(residuals) - 1

@@ -55,6 +55,12 @@ Outside the table
   In the tail |p_N − W/A0| ≤ p_light: choose p_light below every pressure of interest.
 * Heavy end (h < h_min, p_N > p_max): not extrapolated. The Python API raises ValueError; the
   numba kernel returns a flag (``beyond``) that friction.update turns into a ValueError.
+  For the trial states of a nonlinear solver only, :meth:`InterfaceLaw.extrapolated` continues
+  the heavy end by its tangent, p_N = p_max + k_max (u_N − u_max) (k_N held at k_max: what FE
+  codes do beyond a table's last row), so that an iterate overshooting the table still gets a
+  finite, monotone, C¹ response and a Newton step back; the tail is extra nodes of the same
+  interpolant (``_heavy_tail``) up to p_N = 10⁶ p_max, with q' proven negative on every interval.
+  A converged state must still lie in the table: the FE solver judges the range on it.
 
 Tangential stiffness
 --------------------
@@ -101,6 +107,10 @@ _END_MARGIN = 1e-6
 #: narrowest interval [√m00]: the interpolation error there is ~(2e-3)^5 of that at the initial
 #: spacing, so a check that still fails measures the noise of the direct integration
 _MIN_WIDTH = 1e-3
+#: the trial tail past the heavy end (InterfaceLaw.extrapolated): 1 + k_max d / p_max grows by
+#: this factor from node to node, up to _TAIL_SPAN
+_TAIL_RATIO = math.exp(0.5)
+_TAIL_SPAN = 1e6
 
 
 # ---------------------------------------------------------------------------------------------
@@ -152,6 +162,27 @@ def _slope_is_negative(tab) -> np.ndarray:
     binom = [math.comb(4, j) for j in range(5)]
     bern = np.stack([sum(math.comb(k, j) / binom[j] * a[:, j] for j in range(k + 1)) for k in range(5)], axis=1)
     return np.all(bern < 0.0, axis=1)
+
+
+def _heavy_tail(tab) -> np.ndarray:
+    """The kernel table ``tab`` with rows (h, q, q', q'') prepended that continue it past its
+    heavy end h₀ = h_min by its tangent: p_N = p_max (1 + a d), d = h₀ − h, a = −q'(h₀), i.e.
+    q = q₀ + ln x, q' = −a/x, q'' = −a²/x² with x = 1 + a d (exact at the nodes, x = ρ^k up to
+    _TAIL_SPAN). The interval next to h₀ joins the table's q''(h₀) to the tail's −a²: it is
+    narrowed (nodes at x = 1 + (ρ − 1) 2^−j) until q' is proven negative on it."""
+    h0, q0, dq0, _ = tab[0]
+    a = -dq0
+    if not a > 0.0:
+        raise ValueError("the table's slope at its heavy end is not negative")
+    x = _TAIL_RATIO ** np.arange(1, math.ceil(math.log(_TAIL_SPAN) / math.log(_TAIL_RATIO)) + 1)
+    for j in range(60):
+        d = (x - 1.0) / a
+        rows = np.column_stack([h0 - d, q0 + np.log(x), -a / x, -(a / x) ** 2])[::-1]
+        out = np.ascontiguousarray(np.vstack([rows, tab]))
+        if np.all(_slope_is_negative(out[:x.size + 1])):
+            return out
+        x = np.concatenate([[1.0 + (x[0] - 1.0) / 2.0], x])
+    raise RuntimeError("no monotone tail past the heavy end of the table")  # pragma: no cover
 
 
 def _pair(name, value):
@@ -465,13 +496,16 @@ class InterfaceLaw:
     reference state, the separation h_ref at which the interface carries the initial pressure
     p0 = p_N(0) (the paper applies an initial load first, section 9.1). k_Tx = kT_over_kN_x·k_N,
     k_Ty = kT_over_kN_y·k_N. Pass it as ``k_N`` to friction.update / initial_state / normal_law.
-    Build with :meth:`from_pressure` or :meth:`from_separation`.
+    Build with :meth:`from_pressure` or :meth:`from_separation`. ``extrapolate``: past the heavy
+    end (u_N > u_max) the tangent tail of the module docstring instead of a ValueError, for the
+    trial states of a solver (:meth:`extrapolated`); ``u_max`` stays the table's end.
     """
 
     table: NormalLawTable
     h_ref: float
     kT_over_kN_x: float
     kT_over_kN_y: float
+    extrapolate: bool = False
 
     def __post_init__(self):
         if not isinstance(self.table, NormalLawTable):
@@ -483,7 +517,8 @@ class InterfaceLaw:
         object.__setattr__(self, "h_ref", h_ref)
         object.__setattr__(self, "kT_over_kN_x", positive("kT_over_kN_x", self.kT_over_kN_x))
         object.__setattr__(self, "kT_over_kN_y", positive("kT_over_kN_y", self.kT_over_kN_y))
-        object.__setattr__(self, "_tab", self.table.kernel_table)
+        tab = self.table.kernel_table
+        object.__setattr__(self, "_tab", _heavy_tail(tab) if self.extrapolate else tab)
 
     @classmethod
     def from_pressure(cls, table, p0, kT_over_kN=(0.7, 0.7)) -> "InterfaceLaw":
@@ -498,6 +533,11 @@ class InterfaceLaw:
     def from_separation(cls, table, h_ref, kT_over_kN=(0.7, 0.7)) -> "InterfaceLaw":
         """Reference state at the separation h_ref [L] (h_min ≤ h_ref ≤ h_light)."""
         return cls(table, h_ref, *_factor_pair(kT_over_kN))
+
+    def extrapolated(self) -> "InterfaceLaw":
+        """The same law continued past the heavy end by its tangent (module docstring, "Outside
+        the table"): for trial states only; judge a converged state by :attr:`u_max`."""
+        return self if self.extrapolate else replace(self, extrapolate=True)
 
     def with_tangential(self, kT_over_kN) -> "InterfaceLaw":
         """The same normal law with other k_T/k_N factors (one factor or a pair (x, y))."""
@@ -535,7 +575,8 @@ class InterfaceLaw:
         u = _finite_array("u_N", u_N)
         p, k, _ = _evaluate(self._tab, self.h_ref, u, lambda bad: (
             f"u_N = {float(u.reshape(-1)[bad]):g} exceeds the heavy end of the table u_max = "
-            f"{self.u_max:g} (p_max = {self.table.p_max:g}); rebuild the table with a larger p_max"))
+            f"{self.u_max:g} (p_max = {self.table.p_max:g})"
+            f"{' and its extrapolated tail' if self.extrapolate else ''}; rebuild the table with a larger p_max"))
         return _out(p, u), _out(k, u)
 
     def tangential(self, u_N):

@@ -7,7 +7,7 @@ element's own nodes, and the contact face is interpolated by ``element.face_elem
 nodes ``element.contact_face``. A wrong node order shows in the picture (a label in the wrong
 place, a scrambled contact face) instead of being hidden by a hand-written table.
 
-Functions return a ``matplotlib.figure.Figure`` on an Agg canvas (:func:`.style.new_figure`; laid out by hand: 3D axes placed by rectangle).
+Functions return a ``matplotlib.figure.Figure`` on an Agg canvas (:func:`roughcontact.plots.style.new_figure`; laid out by hand: 3D axes placed by rectangle).
 Reference coordinates are dimensionless; mesh coordinates are in mm. Artists a test may look
 for carry a ``gid``: "node-label:<local index>", "contact-face", "pair:<i>", "integration-points",
 "interface-face", "support:<node set>", "load:<k>".
@@ -20,7 +20,7 @@ import numpy as np
 from ..fe.element import LOBATTO4, QUAD9, QUAD16, Element
 from ..fe.interface_element import InterfaceElement
 from ..fe.mesh import CellBlock, InterfaceBlock, Mesh, local_face
-from .style import new_figure, style
+from ..plots.style import new_figure, style
 
 __all__ = [
     "KINDS", "node_kinds", "node_table", "label_positions", "edge_curves", "contact_outline",

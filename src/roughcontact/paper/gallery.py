@@ -7,7 +7,7 @@ from __future__ import annotations
 import html
 from typing import Any, Mapping, Sequence
 
-from .style import pretty_unit
+from ..plots.style import pretty_unit
 
 __all__ = ["verdict_of", "geometry_verdict", "render"]
 

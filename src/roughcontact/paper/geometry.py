@@ -21,6 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..asperity import ellipse
+from ..statistics.summits import map_summits as summits
 from ..statistics.surface import SpectralMoments
 from ..statistics.synthetic import grid_moments, synthetic_surface
 
@@ -47,17 +48,6 @@ class SurfaceProfile:
     sigma_s: float                # summit-height standard deviation, eqs. (71)-(72) [L]
     patch: np.ndarray             # the map around the profile: its rows, as many columns [L]
     patch_extent: tuple           # (x0, x1, y0, y1) of the patch [L]
-
-
-def summits(z: np.ndarray) -> np.ndarray:
-    """Boolean mask of the 8-neighbour summits of a periodic height map (points higher than
-    all eight neighbours: the paper's section 1 definition)."""
-    mask = np.ones(z.shape, dtype=bool)
-    for di in (-1, 0, 1):
-        for dj in (-1, 0, 1):
-            if di or dj:
-                mask &= z > np.roll(z, (di, dj), axis=(0, 1))
-    return mask
 
 
 def fig1_profile(moments: SpectralMoments, *, n: int, dx: float, seed: int, profile_length: float,

@@ -4,7 +4,7 @@ Functions take plain arrays (and the units to show, from the configuration or th
 ``units`` attributes) and return a ``matplotlib.figure.Figure`` drawn on an Agg canvas with the
 constrained layout: no pyplot state, no global backend switch, so importing this module never
 changes how a user's interactive session plots. The look (rcParams, colours, unit and legend
-typesetting, PNG + PDF saving) is owned by :mod:`.style`.
+typesetting, PNG + PDF saving) is owned by :mod:`roughcontact.plots.style`.
 """
 
 from __future__ import annotations
@@ -13,8 +13,8 @@ from typing import Mapping, Sequence
 
 import numpy as np
 
-from .style import STYLE, axis_label, color, legend_outside, new_figure, note, ordered_colors, save, style
-from .style import pretty_unit as pretty
+from ..plots.style import STYLE, axis_label, color, legend_outside, new_figure, note, ordered_colors, save, style
+from ..plots.style import pretty_unit as pretty
 
 __all__ = [
     "STYLE", "style", "new_figure", "save", "fig3", "fig4", "fig5", "fig6", "stiffness_vs_pressure",

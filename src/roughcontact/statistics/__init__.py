@@ -3,15 +3,17 @@
 * :mod:`.surface` — :class:`SpectralMoments`: validation, bandwidth parameters α, β, μ, summit
   density D_sum (17), mean summit curvature, summit-height standard deviation (71)–(72), the
   offset δ (73), the summit pdf (18), Nayak's extremum densities (12), the bearing area A_B;
-* :mod:`.measure` — the moments measured on a height map or profiles (spectral and
-  finite-difference estimators, the lay angle, the distance from strong anisotropy);
+* :mod:`.measure` — the moments of a measured window (derivative fields, or the periodogram for
+  periodic maps), the lay angle, scales, uncertainty, the distance from strong anisotropy;
+* :mod:`.derivatives` — finite-difference derivative fields around dropouts and edges;
+* :mod:`.dropouts` — missing data: the fraction, the harmonic fill;
 * :mod:`.synthetic` — seeded periodic Gaussian surfaces with a prescribed spectrum;
 * :mod:`.gw` — McCool's equivalent isotropic Greenwood–Williamson surface (Tables 1–2).
 """
 
 from .gw import EquivalentGW
-from .measure import MeasuredMoments, measure_heights, measure_profiles
+from .measure import MeasuredMoments, MeasurementWarning, measure_heights, measure_profiles
 from .surface import SpectralMoments, gaussian_bearing_area
 
 __all__ = ["SpectralMoments", "gaussian_bearing_area", "EquivalentGW", "MeasuredMoments",
-           "measure_heights", "measure_profiles"]
+           "MeasurementWarning", "measure_heights", "measure_profiles"]

@@ -38,7 +38,7 @@ from scipy.special import gammaln
 
 from .surface import SpectralMoments
 
-__all__ = ["synthetic_surface", "lay_frame_spectrum", "grid_moments"]
+__all__ = ["synthetic_surface", "lay_frame_spectrum", "grid_moments", "window_moments", "dropout_mask"]
 
 
 def _gg_alpha(n: float) -> float:
@@ -164,3 +164,70 @@ def synthetic_surface(
     filt[0, 0] = 0.0
     noise = np.random.default_rng(seed).standard_normal((ny, nx))
     return np.fft.ifft2(filt * np.fft.fft2(noise)).real
+
+
+def _spectral_derivative(Z, qx, qy, p: int, q: int) -> np.ndarray:
+    """∂^p_x ∂^q_y of the trigonometric interpolant with Fourier coefficients Z (numpy's FFT
+    layout; the Nyquist wavenumbers set to 0, where the real derivative is not defined)."""
+    return np.fft.ifft2((1j * qx) ** p * (1j * qy) ** q * Z).real
+
+
+def window_moments(parent, dx: float, dy: float | None = None, *, rows: slice, cols: slice, mask=None) -> dict:
+    """The exact moments of a window ``parent[rows, cols]`` of a periodic map (e.g.
+    :func:`synthetic_surface`), the reference for estimators of a measured window's moments.
+
+    The derivative fields z_x … z_yy of the whole periodic map come from its Fourier series
+    (exact for its trigonometric interpolant) and are cropped to the window; then, over the
+    window's points (those where ``mask``, a boolean array of the window's shape, is True):
+    m00 = the mean square of the heights about their least-squares plane (Sq²); the lay angle θ
+    from the slopes' covariances (m11 = 0 in the lay frame, m20 ≤ m02; Longuet-Higgins 1957);
+    and the nine moments in the lay frame as covariances, about their window means, of the
+    rotated fields z_a = c z_x + s z_y, z_aa = c² z_xx + 2cs z_xy + s² z_yy, … (angular
+    wavenumbers, L = the unit of dx). Returns the nine moments and ``lay_angle_deg`` (in (−90, 90])."""
+    dy = dx if dy is None else dy
+    z = np.asarray(parent, dtype=float)
+    _check_grid(z.shape, dx, dy)
+    qx, qy = _grid_wavenumbers(z.shape, dx, dy)
+    qx, qy = qx.copy(), qy.copy()
+    if z.shape[1] % 2 == 0:
+        qx[0, z.shape[1] // 2] = 0.0
+    if z.shape[0] % 2 == 0:
+        qy[z.shape[0] // 2, 0] = 0.0
+    Z = np.fft.fft2(z)
+    d = {k: _spectral_derivative(Z, qx, qy, p, q)[rows, cols]
+         for k, (p, q) in {"zx": (1, 0), "zy": (0, 1), "zxx": (2, 0), "zxy": (1, 1), "zyy": (0, 2)}.items()}
+    h = z[rows, cols]
+    keep = np.ones(h.shape, dtype=bool) if mask is None else np.asarray(mask, dtype=bool)
+    ny, nx = h.shape
+    y, x = np.meshgrid(np.arange(ny) * dy, np.arange(nx) * dx, indexing="ij")
+    A = np.column_stack([np.ones(int(keep.sum())), x[keep], y[keep]])
+    coef, *_ = np.linalg.lstsq(A, h[keep], rcond=None)
+    m00 = float(np.mean((h[keep] - A @ coef) ** 2))
+    g = {k: v[keep] - v[keep].mean() for k, v in d.items()}
+    m20, m02, m11 = (float(np.mean(a * b)) for a, b in ((g["zx"], g["zx"]), (g["zy"], g["zy"]), (g["zx"], g["zy"])))
+    theta = 0.5 * math.atan2(2.0 * m11, m20 - m02) + 0.5 * math.pi  # perpendicular to the steepest
+    theta = theta - math.pi if theta > 0.5 * math.pi else theta
+    c, s = math.cos(theta), math.sin(theta)
+    za, zc = c * g["zx"] + s * g["zy"], -s * g["zx"] + c * g["zy"]
+    zaa = c * c * g["zxx"] + 2 * c * s * g["zxy"] + s * s * g["zyy"]
+    zcc = s * s * g["zxx"] - 2 * c * s * g["zxy"] + c * c * g["zyy"]
+    zac = -c * s * g["zxx"] + (c * c - s * s) * g["zxy"] + c * s * g["zyy"]
+    pairs = {"m20": (za, za), "m02": (zc, zc), "m11": (za, zc), "m40": (zaa, zaa), "m04": (zcc, zcc),
+             "m22": (zac, zac), "m31": (zaa, zac), "m13": (zcc, zac)}
+    return {"m00": m00, **{k: float(np.mean(a * b)) for k, (a, b) in pairs.items()},
+            "lay_angle_deg": math.degrees(theta)}
+
+
+def dropout_mask(shape: tuple[int, int], *, seed: int, patches: int = 40, radius=(2.0, 8.0),
+                 single: float = 0.01) -> np.ndarray:
+    """A boolean mask (True = not measured) of optical-instrument-like dropouts: ``patches`` discs
+    of radii uniform in ``radius`` [samples] at random centres, and a fraction ``single`` of
+    isolated points; to test estimators on maps with missing data (set them to NaN)."""
+    _check_grid(shape, 1.0, 1.0)
+    rng = np.random.default_rng(seed)
+    yy, xx = np.mgrid[0:shape[0], 0:shape[1]]
+    hole = rng.random(shape) < single
+    for _ in range(int(patches)):
+        cy, cx, r = rng.integers(0, shape[0]), rng.integers(0, shape[1]), rng.uniform(*radius)
+        hole |= (yy - cy) ** 2 + (xx - cx) ** 2 < r * r
+    return hole

@@ -1,9 +1,10 @@
-"""roughcontact.paper.style: units typeset from UDUNITS strings, legends as a person writes
+"""roughcontact.plots.style: units typeset from UDUNITS strings, legends as a person writes
 them, PNG and PDF saved together."""
 
 import pytest
 
-from roughcontact.paper import gallery, style
+from roughcontact.paper import gallery
+from roughcontact.plots import style
 
 
 @pytest.mark.parametrize("units, shown", [

@@ -27,9 +27,12 @@ import numpy as np
 from ..files import atomic_path
 
 __all__ = [
-    "STYLE", "COLORS", "style", "new_figure", "save", "color", "ordered_colors", "pretty_unit",
-    "axis_label", "parameter_label", "legend_outside", "note",
+    "STYLE", "COLORS", "style", "new_figure", "save", "save_figure", "color", "ordered_colors", "pretty_unit",
+    "axis_label", "parameter_label", "legend_outside", "note", "require_matplotlib",
 ]
+
+#: how to get matplotlib (one line for the error message)
+INSTALL = "pip install '.[workflow]' in the roughcontact checkout (or pip install matplotlib)"
 
 #: rcParams of every figure of the project.
 STYLE: dict = {
@@ -66,9 +69,19 @@ SYMBOLS = {
 _SUPERSCRIPT = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
 
 
+def require_matplotlib() -> None:
+    """ImportError with one line saying how to install matplotlib, where it is missing (the
+    library's figures need it; the rest of the library does not)."""
+    try:
+        import matplotlib  # noqa: F401
+    except ImportError:
+        raise ImportError(f"figures need matplotlib, which is not installed: {INSTALL}") from None
+
+
 @contextlib.contextmanager
 def style() -> Iterator[None]:
     """The project's rcParams for the duration of the block."""
+    require_matplotlib()
     import matplotlib
 
     with matplotlib.rc_context(STYLE):
@@ -78,6 +91,7 @@ def style() -> Iterator[None]:
 def new_figure(**kwargs):
     """A Figure on an Agg canvas (no pyplot), the project's style, the constrained layout
     engine (pass ``layout=None`` to place axes by hand)."""
+    require_matplotlib()
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
 
@@ -99,6 +113,21 @@ def save(fig, path: str | os.PathLike, *, dpi: int | None = None) -> Path:
         with atomic_path(path.with_suffix(".pdf")) as tmp:
             fig.savefig(tmp, format="pdf",
                         metadata={"CreationDate": None, "ModDate": None, "Producer": None, "Creator": "roughcontact"})
+    return path
+
+
+def save_figure(fig, path: str | os.PathLike) -> Path:
+    """Write ``fig`` as one file in the format of its suffix (.png, .pdf, .svg), without a
+    creation date, atomically (files.atomic_path); return its path."""
+    path = Path(path)
+    fmt = path.suffix.lower().lstrip(".")
+    if fmt not in ("png", "pdf", "svg"):
+        raise ValueError(f"{path}: the figure's format comes from its suffix: .png, .pdf or .svg")
+    metadata = {"png": {"Software": None}, "svg": {"Date": None},
+                "pdf": {"CreationDate": None, "ModDate": None, "Producer": None, "Creator": "roughcontact"}}[fmt]
+    with style():
+        with atomic_path(path) as tmp:
+            fig.savefig(tmp, format=fmt, dpi=STYLE["savefig.dpi"], metadata=metadata)
     return path
 
 

@@ -1,0 +1,185 @@
+"""``roughcontact moments FILE``: the spectral moments of a measured height map, in a stated
+length unit, with the lay, the moments at 1x, 2x, 4x the sampling interval, their uncertainties,
+whether the model applies — never refused for being outside the model (exit 0 with warnings)."""
+
+from __future__ import annotations
+
+import math
+import warnings
+from typing import Any
+
+from . import CLIError, _MOMENTS, _real
+
+__all__ = ["add_command"]
+
+ESTIMATORS = ("fd", "spectral")  # statistics.measure.ESTIMATORS (checked by the tests)
+
+
+def add_command(sub, parents) -> None:
+    """Register ``moments`` (on the output parent)."""
+    p = sub.add_parser(
+        "moments", parents=parents, help="spectral moments of a measured height map (x3p, gsf, xyz, csv, npy, ...)",
+        description="The five moments m00, m20, m02, m40, m04 in the lay frame (x along the lay) of a measured "
+        "height map: m00 = Sq^2 about the fitted plane, the others the variances of the derivative fields "
+        "(central differences, around dropouts and edges), rotated as fields; with the lay angle, m22, m31, "
+        "m13, the moments at 1x, 2x, 4x the sampling interval, standard uncertainties and whether the model "
+        "of the paper applies. Angular wavenumbers (docs/fe-export.md). Instrument formats (x3p, sur, opd, "
+        "datx, plu, gwy, ...) need the measure extra (SurfaceTopography).")
+    p.add_argument("file", help="height map: .npy, text grid or x y z points (.csv .txt .dat .asc .xyz), .gsf, "
+                   "or an instrument file (SurfaceTopography)")
+    p.add_argument("--unit", "--length-unit", dest="unit", default="um", metavar="UNIT",
+                   help="length unit of the output moments and of the map (default um)")
+    p.add_argument("--dx", type=_real, default=None, metavar="DX",
+                   help="sampling interval along x (columns), in --xy-unit if given, else in --unit; needed when "
+                   "the file has none (overrides the file's)")
+    p.add_argument("--dy", type=_real, default=None, metavar="DY", help="sampling interval along y (rows) (default dx)")
+    p.add_argument("--xy-unit", dest="xy_unit", default=None, metavar="UNIT",
+                   help="unit of --dx and of a file's lateral coordinates that state none (default: the file's, "
+                   "else --unit)")
+    p.add_argument("--z-unit", dest="z_unit", default=None, metavar="UNIT",
+                   help="unit of the heights (default: the file's, else the lateral unit)")
+    p.add_argument("--z-scale", dest="z_scale", type=_real, default=1.0, metavar="F",
+                   help="multiply the heights by F before the unit conversion (default 1)")
+    p.add_argument("--layout", choices=("auto", "grid", "xyz"), default="auto",
+                   help="text files: a grid (one map row per line) or x y z points (default: detected)")
+    p.add_argument("--channel", type=int, default=None, metavar="N", help="data channel of an instrument file")
+    p.add_argument("--estimator", choices=ESTIMATORS, default="fd",
+                   help="fd (derivative fields of the window, default) or spectral (periodogram; periodic maps)")
+    p.add_argument("--order", type=int, choices=(2, 4, 6, 8), default=6, help="accuracy order of the fd stencils (default 6)")
+    p.add_argument("--window", choices=("hann", "none"), default="hann",
+                   help="spectral estimator's window: hann (default) or none (periodic maps)")
+    p.add_argument("--detrend", choices=("plane", "mean", "none"), default="plane",
+                   help="remove the least-squares plane (default), the mean, or nothing")
+    p.add_argument("--fill", choices=("none", "harmonic"), default="none",
+                   help="missing points: none (the fd stencils avoid them; default) or harmonic (Laplace fill)")
+    p.add_argument("--lay-angle", dest="lay_angle", type=_real, default=None, metavar="DEG",
+                   help="the lay angle if known [deg from the map's x axis]; default: found (m11 = 0)")
+    p.add_argument("--save-rotated", dest="save_rotated", default=None, metavar="FILE.npy",
+                   help="write the map rotated into the lay frame (x along the lay; NaN outside the map)")
+    p.add_argument("--plot", default=None, metavar="FILE.png",
+                   help="draw the moments against the sampling interval, with their uncertainties (png or pdf)")
+    p.set_defaults(func=_run_moments, render=_render_moments)
+
+
+def _map_in_unit(args):
+    """(heights, dx, dy, source payload) in --unit, from the file and the unit options."""
+    from ..readers import read_height_map
+    from ..readers.lengths import factor, normalise
+
+    found = read_height_map(args.file, layout=args.layout, channel=args.channel)
+    unit = normalise(args.unit)
+    xy_unit = normalise(args.xy_unit) if args.xy_unit else found.xy_unit or unit
+    z_unit = normalise(args.z_unit) if args.z_unit else found.z_unit or xy_unit
+    notes = list(found.notes)
+    for name, given, in_file in (("--xy-unit", args.xy_unit, found.xy_unit), ("--z-unit", args.z_unit, found.z_unit)):
+        if given and in_file and normalise(given) != in_file:
+            notes.append(f"{name} {given} overrides the file's {in_file}")
+    # --dx, --dy are in --xy-unit if given, else in --unit; the file's spacing in its own unit
+    given_unit = normalise(args.xy_unit) if args.xy_unit else unit
+    if args.dx is not None or args.dy is not None:
+        if args.dx is None:
+            raise CLIError("--dy needs --dx")
+        if found.dx is not None:
+            notes.append(f"--dx {args.dx:g} {given_unit} overrides the file's spacing {found.dx:g} {xy_unit}")
+        f = factor(given_unit, unit)
+        dx, dy = args.dx * f, (args.dy if args.dy is not None else args.dx) * f
+    elif found.dx is None:
+        raise CLIError(f"{args.file} does not give the sampling interval: pass --dx (in --xy-unit, default {unit})")
+    else:
+        f = factor(xy_unit, unit)
+        dx, dy = found.dx * f, (found.dy if found.dy is not None else found.dx) * f
+    fz = factor(z_unit, unit) * args.z_scale
+    assumed = found.z_unit is None and args.z_unit is None
+    source = {"file": str(args.file), "format": found.source, "notes": notes,
+              "units_in_file": {"xy": found.xy_unit, "z": found.z_unit},
+              "units_read": {"xy": xy_unit, "z": z_unit, "assumed": assumed}}
+    return found.heights * fz, dx, dy, source
+
+
+def _run_moments(args) -> dict[str, Any]:
+    from ..contact.validity import relay_warnings
+    from ..readers.lengths import normalise
+    from ..statistics.measure import measure_heights, rotate_map
+
+    unit = normalise(args.unit)
+    z, dx, dy, source = _map_in_unit(args)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        r = measure_heights(z, dx, dy, estimator=args.estimator, order=args.order, window=args.window,
+                            detrend=args.detrend, lay_angle_deg=args.lay_angle, fill=args.fill)
+    L = unit
+    units = {"m00": f"{L}^2", "m20": "1", "m02": "1", "m40": f"1/{L}^2", "m04": f"1/{L}^2", "m11_map": "1",
+             "m22": f"1/{L}^2", "m31": f"1/{L}^2", "m13": f"1/{L}^2", "dx": L, "dy": L,
+             "lay_angle_deg": "deg (from the map's x axis to the lay, counter-clockwise)",
+             "wavenumbers": "angular (rad per unit length), no 2*pi in m_pq",
+             "scales": "the moments with the stencils at factor * dx, factor * dy",
+             "uncertainty": "standard uncertainty of the surface's moments from this map (batch means over 4x4 "
+                            "sub-windows), same units as the moments"}
+    payload = {
+        **{k: r.values[k] for k in _MOMENTS}, "unit": L,
+        "lay_angle_deg": r.lay_angle_deg,
+        "lay_angle_uncertainty_deg": None if r.uncertainty is None else r.uncertainty["lay_angle_deg"],
+        "m11_map": r.m11_map, "m22": r.values["m22"], "m31": r.values["m31"], "m13": r.values["m13"],
+        "uncertainty": None if r.uncertainty is None else {k: r.uncertainty[k] for k in (*_MOMENTS, "m22")},
+        "scales": [dict(s) for s in r.scales],
+        "anisotropy": r.anisotropy(), "model": r.validity(),
+        "estimator": r.estimator, "order": r.order, "window": r.window, "detrend": r.detrend, "fill": r.fill,
+        "missing_fraction": r.missing_fraction, "dx": r.dx, "dy": r.dy, "shape": list(z.shape),
+        "source": source, "units": units,
+    }
+    if args.save_rotated:
+        import numpy as np
+
+        np.save(args.save_rotated, rotate_map(z, r.dx, r.dy, r.lay_angle_deg))
+    if args.plot:
+        from ..plots import moments_against_scale, save_figure
+
+        try:
+            save_figure(moments_against_scale(_json_safe(payload)), args.plot)
+        except ImportError as exc:
+            raise CLIError(str(exc)) from None
+        payload["plot"] = args.plot
+    payload["warnings"] = relay_warnings(caught)
+    return _json_safe(payload)
+
+
+def _json_safe(value):
+    """Non-finite floats (an undefined ratio, an infinite lay uncertainty of an isotropic map) as
+    None: the payload is strict JSON and the CLI's finiteness check is for computed results."""
+    if isinstance(value, dict):
+        return {k: _json_safe(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_json_safe(v) for v in value]
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
+
+
+def _render_moments(payload: dict[str, Any]) -> str:
+    u = payload["units"]
+    unc = payload["uncertainty"] or {}
+    lines = [f"{k:<24}{payload[k]:>16.8g}  {('+- ' + format(unc[k], '.2g')) if k in unc else '':<12}{u[k]}"
+             for k in _MOMENTS]
+    lines.append(f"{'lay_angle_deg':<24}{payload['lay_angle_deg']:>16.6g}  "
+                 + (f"+- {payload['lay_angle_uncertainty_deg']:.2g}" if payload["lay_angle_uncertainty_deg"] is not None else ""))
+    lines += [f"{k:<24}{payload[k]:>16.8g}  {u[k]}" for k in ("m11_map", "m22", "m31", "m13")]
+    lines += [f"{k:<24}{v:>16.8g}" for k, v in payload["anisotropy"].items()]
+    m = payload["model"]
+    lines.append("model of the paper applies: " + ("yes" if m["model_applies"] else "no") + "  ("
+                 + "  ".join(f"{k}={v:.4g}" if isinstance(v, float) else f"{k}={v}" for k, v in m.items() if k != "model_applies")
+                 + ")")
+    for s in payload["scales"]:
+        lines.append(f"at {s['factor']}x dx ({s['dx']:g} {u['dx']}): " + "  ".join(f"{k}={s[k]:.6g}" for k in _MOMENTS))
+    src = payload["source"]
+    lines += [f"file={src['file']}  format={src['format']}  units in file: xy={src['units_in_file']['xy']} "
+              f"z={src['units_in_file']['z']}" + ("  (none: taken in " + payload["unit"] + ")" if src["units_read"]["assumed"] else ""),
+              f"estimator={payload['estimator']}  order={payload['order']}  window={payload['window']}  "
+              f"detrend={payload['detrend']}  fill={payload['fill']}  missing={100 * payload['missing_fraction']:.2f} %  "
+              f"dx={payload['dx']:g} {u['dx']}  dy={payload['dy']:g} {u['dy']}  shape={payload['shape']}",
+              f"wavenumbers: {u['wavenumbers']}"]
+    lines += [f"note: {n}" for n in src["notes"]]
+    if payload.get("plot"):
+        lines.append(f"plot: {payload['plot']}")
+    lines.append(f"warnings: {len(payload['warnings'])}")
+    lines += [f"warning: {w}" for w in payload["warnings"]]
+    return "\n".join(lines)
