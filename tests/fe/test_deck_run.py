@@ -246,3 +246,21 @@ def test_two_interactions_in_one_deck(tmp_path):
     axes = res.summary()["interface_axes"]
     assert axes["interaction"][0] == "SMOOTH" and axes["interaction"][-1] == "ROUGH"
     assert np.allclose(axes["e_1"][-1], [0, 1, 0]) and np.allclose(axes["e_2"][-1], [-1, 0, 0])
+
+
+def test_validity_is_judged_on_the_solved_pressures(block_deck, write_deck, law_file):
+    """Issue 22: the FE runs printed the law table's validity warnings (A/A0 = 2.19 at its end),
+    the same lines for every load. Now the largest solved pressure of each interaction decides:
+    the same deck and law (m00 = 0.625 um², E* 1.07e5, table to 1000 N/mm²) say nothing at
+    100 N/mm² and the area-ratio warning at 300 N/mm² (A/A0 = 0.117 there, limit 0.1)."""
+    moments = {"m00": 0.625, "m20": 8.0e-5, "m02": 8.0e-4, "m40": 1.04e-6, "m04": 1.04e-4, "unit": "um"}
+    law = law_file(moments=moments, E_star=1.0667e5, pressure_range=[1e-4, 1000.0])
+    said = {}
+    for p in (100.0, 300.0):
+        res = run_deck_file(write_deck(block_deck(n=1, steps=({"pressure": p, "increments": 1},)), f"p{p:g}.inp"),
+                            law, "quadratic")
+        assert np.allclose(res.interface_fields(res.increments[-1])["p_N"], p, rtol=1e-9)
+        said[p] = res.validity_warnings()
+    assert said[100.0] == []
+    assert len(said[300.0]) == 1 and "interaction ROUGH: at the largest solved pressure 300" in said[300.0][0]
+    assert "A/A0 = 0.117" in said[300.0][0]
