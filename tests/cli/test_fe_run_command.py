@@ -120,3 +120,27 @@ def test_no_convergence_is_exit_1_naming_the_step(capsys, files, monkeypatch):
     code, out, err = run(capsys, "fe", "run", files / "model.inp", "--interface", files / "law.yaml", "--quiet")
     assert code == 1 and out == "" and len(err.splitlines()) == 1
     assert re.search(r"step 1 \(.*model\.inp:\d+\): no convergence at increment 1 of 2", err)
+
+
+def test_a_cut_back_is_reported_and_the_answer_kept(capsys, files, monkeypatch):
+    """*STATIC's increments are cut back when Newton fails (here: at most 8 iterations; the first increment takes 10) and the
+    cut-backs are said: on stderr per increment, in the JSON per step and in total; the answer
+    is that of the run without cut-backs (a frictionless law: no path dependence)."""
+    from roughcontact.fe import deck_run, solver
+
+    law = yaml.safe_load((files / "law.yaml").read_text())
+    law["interactions"]["ROUGH"]["friction"] = "none"
+    (files / "free.yaml").write_text(yaml.safe_dump(law))
+    argv = ("fe", "run", files / "model.inp", "--interface", files / "free.yaml", "--json")
+    code, out, _ = run(capsys, *argv)
+    plain = json.loads(out)
+    real = solver.solve
+    monkeypatch.setattr(deck_run, "solve", lambda model, levels, options=None, progress=None: real(
+        model, levels, solver.NewtonOptions(max_iterations=8), progress))
+    code, out, err = run(capsys, *argv)
+    assert code == 0, err
+    cut = json.loads(out)
+    assert code == 0 and plain["cutbacks"] == 0 < cut["cutbacks"] == sum(s["cutbacks"] for s in cut["steps"])
+    assert re.search(r"increment \d+/\d+: \d+ Newton iterations, \d+ cut-backs", err)
+    for a, b in zip(plain["steps"], cut["steps"]):
+        assert max(abs(x - y) for x, y in zip(b["interface"]["p_N"], a["interface"]["p_N"])) < 1e-7 * max(a["interface"]["p_N"])
