@@ -266,31 +266,25 @@ class _Reader:
         if kw.param("ELSET"):
             for eid in self._element_refs(kw.param("ELSET"), kw.where):
                 members.update(self.elements[eid][1])
-        for line in kw.data:
-            if kw.flag("GENERATE"):
-                ids = self._generate(kw, line, "a node id")
-                missing = [i for i in ids if i not in self.nodes]
-                if missing:
-                    raise DeckError(line.where, f"GENERATE: node {missing[0]} is not defined")
-                members.update(ids)
-            else:
-                for f in line.fields:
-                    members.update(self._node_refs(f, line.where))
+        self._add_members(kw, members, "node", self.nodes, self._node_refs)
         self.where[("nset", name)] = kw.where
 
     def elset(self, kw):
         name = self._name(kw, "ELSET")
-        members = self.elsets.setdefault(name, set())
+        self._add_members(kw, self.elsets.setdefault(name, set()), "element", self.elements, self._element_refs)
+
+    def _add_members(self, kw, members: set, what: str, defined, refs):
+        """The data lines of *NSET/*ELSET into ``members``: ids and set names, or GENERATE ranges."""
         for line in kw.data:
             if kw.flag("GENERATE"):
-                ids = self._generate(kw, line, "an element id")
-                missing = [i for i in ids if i not in self.elements]
+                ids = self._generate(kw, line, f"a{'n' if what == 'element' else ''} {what} id")
+                missing = [i for i in ids if i not in defined]
                 if missing:
-                    raise DeckError(line.where, f"GENERATE: element {missing[0]} is not defined")
+                    raise DeckError(line.where, f"GENERATE: {what} {missing[0]} is not defined")
                 members.update(ids)
             else:
                 for f in line.fields:
-                    members.update(self._element_refs(f, line.where))
+                    members.update(refs(f, line.where))
 
     def surface(self, kw):
         name = self._name(kw, "NAME")
