@@ -264,3 +264,14 @@ def test_validity_is_judged_on_the_solved_pressures(block_deck, write_deck, law_
     assert said[100.0] == []
     assert len(said[300.0]) == 1 and "interaction ROUGH: at the largest solved pressure 300" in said[300.0][0]
     assert "A/A0 = 0.117" in said[300.0][0]
+
+
+def test_a_converged_state_past_the_table_names_its_law(block_deck, write_deck, law_file):
+    """The robust Newton's range check on a deck's laws (InterfaceLaws.beyond_table, normal_of):
+    a load whose solved pressure lies past the table's heavy end is a clear error naming that
+    law's p_max, not an answer resting on the extrapolated tail."""
+    from roughcontact.fe.deck_run import DeckConvergenceError
+
+    law = law_file(pressure_range=[1e-4, 10.0])
+    with pytest.raises(DeckConvergenceError, match=r"step 1 .*p_N up to 50 .*\(p_max = 10\)"):
+        run_deck_file(write_deck(block_deck(n=1, steps=({"pressure": 50.0, "increments": 1},))), law, "quadratic")
