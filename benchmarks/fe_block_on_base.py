@@ -29,6 +29,8 @@ import threading
 import time
 from pathlib import Path
 
+import numpy as np
+
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
@@ -144,9 +146,13 @@ def run_engine(problem, deck: Path, law: Path, how: str, timeout: float) -> dict
         row = measure([exe, "fe", "run", deck.name, "--interface", law.name, "--json"], deck.parent, timeout)
         if row["exit"] == 0:
             out = json.loads(row["output"][row["output"].index("{"):])
-            its = out.get("newton_iterations")
-            row.update(dofs=out.get("dofs"), solve_s=out.get("seconds"),
-                       newton_iterations=sum(its) if isinstance(its, list) else its)
+            last = out["steps"][-1]
+            bottom = np.array(last["node_sets"]["BLOCKBOTTOM"]["u"], dtype=float)
+            row.update(dofs=out["dofs"], interface_points=out["interface_points"], solve_s=out["seconds"],
+                       newton_iterations=out["newton_iterations"], cutbacks=out["cutbacks"],
+                       increments=sum(s["increments"] for s in out["steps"]),
+                       max_p_N=float(np.max(last["interface"]["p_N"])),
+                       mean_uz_block_bottom_mm=float(np.mean(bottom[:, 2])))
     else:
         row = measure([sys.executable, str(Path(__file__).resolve()), "--engine-child", str(problem.refine)],
                       deck.parent, timeout)
@@ -159,7 +165,6 @@ def run_engine(problem, deck: Path, law: Path, how: str, timeout: float) -> dict
 
 def engine_child(refine: int) -> int:
     """One engine run through the API (in its own process); prints one JSON line."""
-    import numpy as np
 
     from roughcontact.fe.solver import NewtonOptions, linear_strategy, solve
 

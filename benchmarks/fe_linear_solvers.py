@@ -21,8 +21,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from machine import info  # noqa: E402
 
 from roughcontact import SpectralMoments  # noqa: E402
-from roughcontact.fe.beam import BeamSpec, run_beam  # noqa: E402
-from roughcontact.fe.contact import statistical_interface  # noqa: E402
+from roughcontact.examples.beam import BeamRun, BeamSpec, run_beam  # noqa: E402
 from roughcontact.fe.solver import NewtonOptions  # noqa: E402
 
 MESHES = [("quadratic", 12, 3), ("cubic", 12, 3), ("quadratic", 25, 6), ("cubic", 25, 6),
@@ -38,13 +37,12 @@ def main(argv=None) -> int:
     surface = SpectralMoments(0.625, 8e-5, 8e-4, 1.04e-6, 1.04e-4)
     rows = []
     for family, nx, nz in MESHES:
-        spec = BeamSpec(elements=family, n_x=nx, n_z=nz)
-        material = statistical_interface(surface, spec.seating_pressure, E_star=1.057e5 / 0.9375)
+        run = BeamRun(spec=BeamSpec(elements=family, n_x=nx, n_z=nz), m00=surface.m00)  # E* = 1.057e5/0.9375
         times = {s: [] for s in SOLVERS}
         results = {}
         for _ in range(args.repeat):
             for solver in SOLVERS:  # interleaved: a load change hits both
-                r = run_beam(spec, material, options=NewtonOptions(linear_solver=solver))
+                r = run_beam(run, options=NewtonOptions(linear_solver=solver))
                 times[solver].append(r.seconds)
                 results[solver] = r
         diff = abs(results["sparse"].u_N_um - results["condensed"].u_N_um).max()

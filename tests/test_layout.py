@@ -29,6 +29,7 @@ LAYERS = [
     {"contact"},
     {"interface", "bem"},
     {"fe"},
+    {"examples"},
     {"plots"},
     {"paper"},
     {"io", "warmup", "cli", "__main__", "__init__"},

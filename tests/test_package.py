@@ -45,7 +45,7 @@ def test_the_library_needs_no_workflow_package():
         "        if name.split('.')[0] in ('snakemake', 'matplotlib', 'yaml', 'jsonschema'):\n"
         "            raise ModuleNotFoundError(name)\n"
         "sys.meta_path.insert(0, Hide())\n"
-        "import roughcontact, roughcontact.contact, roughcontact.interface, roughcontact.fe.beam, roughcontact.fe.punch\n"
+        "import roughcontact, roughcontact.contact, roughcontact.interface, roughcontact.examples.beam, roughcontact.examples.punch\n"
         "import roughcontact.fe.vtu, roughcontact.io, roughcontact.cli, roughcontact.statistics.synthetic\n"
         "from roughcontact import elastic_contact, SpectralMoments\n"
         "s = SpectralMoments(m00=0.0625, m20=8e-5, m02=8e-4, m40=1.04e-6, m04=1.04e-4)\n"

@@ -52,8 +52,8 @@ def _commands(height_map):
 def test_bad_output_names_are_one_line_before_any_computation(capsys, tmp_path, height_map, monkeypatch, command,
                                                              target, message):
     # nothing may be computed first: the FE runs would take seconds, and fail loudly here
-    monkeypatch.setattr("roughcontact.fe.beam.beam_case", lambda *a, **k: pytest.fail("computed before checking"))
-    monkeypatch.setattr("roughcontact.fe.punch.punch_case", lambda *a, **k: pytest.fail("computed before checking"))
+    monkeypatch.setattr("roughcontact.examples.beam.run_beam", lambda *a, **k: pytest.fail("computed before checking"))
+    monkeypatch.setattr("roughcontact.examples.punch.run_punch", lambda *a, **k: pytest.fail("computed before checking"))
     path = target.format(missing=tmp_path / "nonexistent", tmp=tmp_path)
     code, out, err = run(capsys, *_commands(height_map)[command], path)
     assert code == 2 and out == "" and len(err.splitlines()) == 1 and message in err, err

@@ -494,23 +494,6 @@ def test_input_validation():
         fr.OrthotropicHardening(0.3, 0.5, n_x=-1.0)
 
 
-def test_fig18_presets():
-    m, k = fr.fig18_preset("a", 100.0, length_unit="um")
-    assert (m.mu_m_x, m.mu_m_y, m.mu_o_x, m.k) == (0.2, 0.2, 1.0, 0.0)
-    assert k == dict(k_N=100.0, k_Tx=70.0, k_Ty=70.0) and m.n_x == pytest.approx(0.275)
-    m, k = fr.fig18_preset("b", 100.0)
-    assert (m.mu_m_x, m.mu_o_y, m.n_y) == (0.5, 0.5, 275.0) and k["k_Ty"] == 70.0
-    m, k = fr.fig18_preset("c", 100.0)
-    assert k["k_Tx"] == 70.0 and k["k_Ty"] == 100.0
-    # case (c): μ's equal, circular potential -> slip coaxial with t despite k_Tx != k_Ty
-    m, k = fr.fig18_preset("c", 100.0, length_unit="um")
-    r = fr.update(m, fr.initial_state(u_N=UN0, k_N=100.0), [0.1, 0.1, 0.0], **k)
-    dup = r.state[fr.UP_X:fr.UP_Y + 1]
-    assert fr.slip_angle(dup) == pytest.approx(fr.traction_angle(r.state[:2]), abs=1e-12)
-    with pytest.raises(ValueError):
-        fr.fig18_preset("d", 100.0)
-
-
 # ---------------------------------------------------------------------------------------------
 # tabulated normal law (interface.InterfaceLaw): p_N(u_N), k_N(u_N) and k_T = a k_N(u_N) at the
 # end of the step

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 import yaml
 
-from roughcontact.fe.beam import BeamSpec
+from roughcontact.examples.beam import BeamSpec
 from roughcontact.interface.export import format_table, overclosure_table
 from roughcontact.paper import calculix
 from roughcontact.statistics import SpectralMoments
@@ -91,15 +91,14 @@ def test_block_closure_is_the_inverse_of_the_law(tmp_path):
 def test_beam_agrees_with_the_engine(tmp_path):
     """The frictionless beam of example 9.1 (m00 = 0.0625) in ccx with the exported table vs
     this project's engine on the same mesh lines: centre and end within the configured atol."""
-    from roughcontact.fe.beam import beam_case
+    from roughcontact.examples.beam import run_beam
+    from roughcontact.examples.runs import beam_run
 
     case = "3"
-    run = {"family": "quadratic", "case": case, "m00": BEAM["cases"][case]["m00"], "law": "elastic",
-           "E_star": E_STAR, "tangential": "free", "surface": BEAM["surface"], "spec": BEAM["spec"]}
-    ours = beam_case(run)
+    ours = run_beam(beam_run(BEAM, "quadratic", case))
     spec = ours.spec
-    f = calculix.engine_deflections_um(ours.solution.model.points.x[:, 0], ours.solution.model.points.x[:, 1],
-                                       -ours.solution.point_fields(-1, reference=0)["closure_mm"] * 1000.0, spec)
+    points = ours.point_fields()
+    f = calculix.engine_deflections_um(points["x"][:, 0], points["x"][:, 1], points["u_N_um"], spec)
     table, text = _table(case, spec)
     dat, seconds = calculix.run_ccx(calculix.beam_deck(text, spec), "beam", tmp_path)
     got = calculix.beam_deflections_um(dat, spec)
@@ -127,3 +126,48 @@ def test_node_prints_stop_at_the_next_print():
 """
     (t, rows), = calculix.node_prints(dat, "BOTTOM")
     assert t == 1.0 and sorted(rows) == [11, 12] and rows[11][2] == -4.328515e-4
+
+
+# ---------------------------------------------------------------------------------------------
+# one deck in both codes (roughcontact.paper.calculix_deck, examples.block_on_base)
+# ---------------------------------------------------------------------------------------------
+def test_first_order_extrapolation():
+    from roughcontact.paper.calculix_deck import extrapolated
+
+    # u = u_inf + c h: exact for a first-order error
+    assert extrapolated([1, 2], [3.0 + 0.5, 3.0 + 0.25]) == pytest.approx(3.0, rel=1e-15)
+    assert extrapolated([1, 2, 3], [9.0, 3.0 + 0.25, 3.0 + 0.5 / 3]) == pytest.approx(3.0, rel=1e-14)
+
+
+def test_block_on_base_deck_is_one_deck_for_both_codes():
+    """The deck reads here with the table in place (replaced by the law, a note says so), has
+    what ccx reads (numbered dofs, no Abaqus-only shorthands, fields <= 20 characters), two
+    materials, a base larger than the block and a load on part of the block's top."""
+    from roughcontact.examples.block_on_base import BlockOnBase, block_on_base_deck
+    from roughcontact.fe.deck import read_deck
+    from roughcontact.fe.deck_mesh import deck_mesh
+
+    table = "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=TABULAR\n0.0, -1.0e-4\n100.0, 1.0e-3"
+    text = block_on_base_deck(BlockOnBase(refine=1), table)
+    d = read_deck("bob.inp", text)
+    assert set(d.materials) == {"STEEL", "ALUMINIUM"} and any("replaced by the law ROUGH" in n for n in d.notes)
+    assert not any(k in text for k in ("XSYMM", "YSYMM", "ENCASTRE"))
+    data = [line for line in text.splitlines() if line[:1].isdigit() or line[:1] == "-"]
+    assert data and all(len(f.strip()) <= 20 for line in data for f in line.split(","))
+    base = d.coords[d.node_index(d.nsets["BOTTOM"])]
+    loaded = d.coords[d.node_index(d.nsets["LOADED"])]
+    assert np.ptp(base[:, 0]) == 40.0 and loaded[:, 0].min() == -5.0 and loaded[:, 0].max() == 10.0
+    dm = deck_mesh(d, "quadratic")
+    assert len(dm.mesh.interfaces[0].cells) == 4  # the block's bottom; the base's other top faces stay free
+
+
+@needs_ccx
+@pytest.mark.slow
+def test_block_on_base_in_both_codes(tmp_path):
+    """Refinement 1 only (the scene refines; `snakemake fe_calculix`): ccx and the engine run the
+    same deck; their loaded faces move within 5 % (measured 4.0 %: both first order, from
+    opposite sides; the scene extrapolates)."""
+    from roughcontact.paper.calculix_deck import run_refinement
+
+    row = run_refinement(CFG, 1, tmp_path)
+    assert abs(row["rel_difference"]) < 0.05 and row["ccx_um"] < row["engine_um"] < 0

@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 import xarray as xr
 
+from roughcontact.examples.punch import PunchRun
 from roughcontact.paper import fe_punch, fe_speed
 from roughcontact.paper.report import render_rows_csv
 from roughcontact.paper.verify import NOT_REPRODUCED, REPRODUCED
@@ -100,21 +101,24 @@ def test_printed_D_above_the_bound_is_not_reproduced():
 
 
 def test_table5_results_put_each_case_in_its_cell():
-    runs = {f"quadratic-{r}-{c}": {"case": c, "geometry": {"family": "quadratic"}}
-            for r in ("main", "quarter", "sens-patch-10") for c in ("a", "b", "c", "frictionless")}
-    attrs = {n: {"D": 10.0 * "abc".index(r["case"]) + (1 if "quarter" in n else 0)}
-             for n, r in runs.items() if r["case"] != "frictionless"}
+    runs = {f"quadratic-{r}-{c}": PunchRun(case=c) for r in ("main", "quarter", "sens-patch-10")
+            for c in ("a", "b", "c", "frictionless")}
+    attrs = {n: {"D": 10.0 * "abc".index(r.case) + (1 if "quarter" in n else 0)}
+             for n, r in runs.items() if r.case != "frictionless"}
     out = fe_punch.table5_results(attrs, runs, "D", ["main", "quarter"])
     assert set(out) == set(MODELS)  # the sensitivity variant is not a Table 5 column
     np.testing.assert_array_equal(out["fe-quadratic"]["D"], [0.0, 10.0, 20.0])
     np.testing.assert_array_equal(out["fe-quadratic-quarter"]["D"], [1.0, 11.0, 21.0])
 
 
-def test_run_bounds_use_the_frictionless_slips_in_mm():
+def test_run_bounds_use_the_frictionless_slips_in_mm_from_the_unloaded_start():
     ds, free = dataset(), dataset()
-    free["jump_x_um"].values[1] = 3.0
-    free["jump_y_um"].values[1] = 4.0  # |delta_T| = 5 um at every point
-    bounds = fe_punch.run_bounds({"r": ds, "f": free}, {"r": {"case": "b", "bound": "f"}, "f": {"case": "frictionless"}})
+    free["jump_x_um"].values[1] = 2.0
+    free["jump_y_um"].values[1] = 4.5
+    free["seating_jump_x_um"] = ("point", np.full(9, 1.0))  # the seating's own relative displacement
+    free["seating_jump_y_um"] = ("point", np.full(9, -0.5))  # |delta_T| = |(3, 4)| = 5 um at every point
+    bounds = fe_punch.run_bounds({"r": ds, "f": free}, {"r": PunchRun(case="b", bound="f"),
+                                                        "f": PunchRun(case="frictionless")})
     # mu_max(b) = 0.5, 9 points of 1 mm^2 at 2.5 N/mm^2, 5e-3 mm, whole punch
     assert bounds == {"r": pytest.approx(4 * 0.5 * 9 * 2.5 * 5e-3, rel=1e-14)}
 

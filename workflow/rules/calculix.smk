@@ -1,4 +1,5 @@
-# The exported pressure-overclosure table checked in CalculiX (config: calculix; issue 14).
+# The exported pressure-overclosure table checked in CalculiX (config: calculix; issue 14), and one
+# deck in CalculiX and in the engine (issue 23).
 # OPTIONAL scene "calculix": it needs the program ccx (Debian package calculix-ccx). Without it
 # the rule still succeeds, writes no checks and paper_figures/calculix.md says "Skipped"; the
 # verification report shows that section as skipped.
@@ -9,10 +10,11 @@ CALCULIX_RUNS = [f"{CALCULIX['family']}-{case}-main" for case in CALCULIX["cases
 
 rule fe_calculix:
     """Block and frictionless beam (example 9.1) in ccx with the exported tables, against the
-    law and the engine's beam runs (roughcontact.paper.calculix)."""
+    law and the engine's beam runs (roughcontact.paper.calculix); a block on a base as one deck
+    in ccx and in the engine, refined (roughcontact.paper.calculix_deck)."""
     input:
         runs=fe_beam_dirs(CALCULIX_RUNS),
-        code=FE_REPORT_SOURCES + library_sources("paper/calculix.py") + library_sources("interface/export.py"),
+        code=FE_REPORT_SOURCES + FE_SOURCES + library_sources("paper/calculix.py", "paper/calculix_deck.py"),
     output:
         md="paper_figures/calculix.md",
         csv="paper_figures/calculix.csv",

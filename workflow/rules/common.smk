@@ -192,51 +192,18 @@ def sweep_parts(name):
 # ---------------------------------------------------------------------------------------------
 # finite elements (config: fe)
 # ---------------------------------------------------------------------------------------------
-#: the FE engine and what it stands on (the beam runs' recipe is fe/beam.py's beam_case)
-FE_SOURCES = PHYSICS_SOURCES + library_sources("fe")
+#: the FE engine and what it stands on (the runs' recipes: roughcontact/examples)
+FE_SOURCES = PHYSICS_SOURCES + library_sources("fe", "examples")
 FE_REPORT_SOURCES = REPORT_SOURCES + library_sources("paper/fe_beam.py")
 FE_BEAM = config["fe"]["beam"]
 
+from roughcontact.examples import runs as fe_runs  # noqa: E402  (typed run specs from the configuration)
 
-def _beam_run(family, case, **override):
-    """One FE run of example 9.1 (roughcontact.fe.beam.beam_case reads it)."""
-    c = FE_BEAM["cases"][case]
-    run = {"family": family, "case": case, "m00": c["m00"], "law": c["law"], "psi": FE_BEAM["psi"],
-           "E_star": FE_BEAM["E_star"], "tangential": FE_BEAM["tangential"], "mu": None,
-           "surface": dict(FE_BEAM["surface"]), "spec": dict(FE_BEAM["spec"])}
-    spec = override.pop("spec", {})
-    run.update(override)
-    run["spec"].update(spec)
-    return run
-
-
-def _beam_runs():
-    """{run name: run}: the main runs of Table 4 (every family and case), then the study's."""
-    runs = {f"{f}-{case}-main": _beam_run(f, case) for f in FE_BEAM["families"] for case in FE_BEAM["cases"]}
-    study = FE_BEAM["study"]
-    fam = study["variants_family"]
-    elastic = [case for case, c in FE_BEAM["cases"].items() if c["law"] == "elastic"]
-    for case in elastic:
-        for t in study["tangential"]:
-            name = t["tangential"] + (f"-{t['mu']:g}" if "mu" in t else "")
-            runs[f"{fam}-{case}-{name}"] = _beam_run(fam, case, tangential=t["tangential"], mu=t.get("mu"))
-        runs[f"{fam}-{case}-estar-caption"] = _beam_run(fam, case, E_star=study["E_star_caption"])
-    for case, c in FE_BEAM["cases"].items():
-        if c["law"] == "elastoplastic":
-            runs[f"{fam}-{case}-printed-Y"] = _beam_run(fam, case, Y=study["printed_Y"])
-    for fam in FE_BEAM["families"]:
-        for nx, nz in study["meshes"]:
-            runs[f"{fam}-{elastic[0]}-mesh-{nx}x{nz}"] = _beam_run(fam, elastic[0], spec={"n_x": nx, "n_z": nz})
-    return runs
-
-
-FE_BEAM_RUNS = _beam_runs()
+#: {run name: BeamRun}: the main runs of Table 4 (every family and case), then the study's
+FE_BEAM_RUNS = fe_runs.beam_runs(FE_BEAM)
 FE_BEAM_MAIN = [name for name in FE_BEAM_RUNS if name.endswith("-main")]
-#: one job per (family, case) solves the case's runs (its main run and study variants): the
-#: job's fixed cost (interpreter, imports, normal-law table) is paid once per case
-FE_BEAM_GROUPS = {}
-for _name, _run in FE_BEAM_RUNS.items():
-    FE_BEAM_GROUPS.setdefault(f"{_run['family']}-{_run['case']}", {})[_name.split("-", 2)[2]] = _run
+#: one job per (family, case) solves the case's runs (its main run and study variants)
+FE_BEAM_GROUPS = fe_runs.beam_groups(FE_BEAM_RUNS)
 
 
 def fe_beam_group(name):
@@ -286,54 +253,8 @@ def fe_checks():
 
 
 FE_PUNCH = config["fe"]["punch"]
-#: fields of a reading or variant that leave the frictionless problem unchanged (its bound is
-#: then the one of the run's base)
-_SAME_FRICTIONLESS = {"tangential_form", "increments", "unload_increments"}
-
-
-def _punch_run(family, case, *overrides):
-    """One run of example 9.2 (roughcontact.fe.punch.punch_case reads it)."""
-    main = copy.deepcopy(FE_PUNCH["main"])
-    run = {"case": case, "m00": FE_PUNCH["m00"], "surface": dict(FE_PUNCH["surface"]), "law": FE_PUNCH["law"],
-           "psi": FE_PUNCH["psi"], **{k: v for k, v in main.items() if k != "geometry"},
-           "geometry": {"family": family, **main.get("geometry", {})}}
-    for over in overrides:
-        run.update({k: v for k, v in over.items() if k != "geometry"})
-        run["geometry"].update(over.get("geometry", {}))
-    return run
-
-
-def _punch_group(group, family, cases, overrides, inherited_bound=None):
-    """The runs of one job: ``cases`` of ``family`` with the run overrides (the last one is the
-    job's own), each naming the frictionless run of its bound: the job's own frictionless run
-    where the last override changes the frictionless problem (or nothing is inherited), else
-    ``inherited_bound``."""
-    own = inherited_bound is None or bool(set(overrides[-1]) - _SAME_FRICTIONLESS)
-    bound = f"{group}-frictionless" if own else inherited_bound
-    runs = {f"{group}-{c}": {**_punch_run(family, c, *overrides), "bound": bound} for c in cases}
-    if own:
-        runs[f"{group}-frictionless"] = _punch_run(family, "frictionless", *overrides)
-    return runs
-
-
-def _punch_groups():
-    """{job: {run name: run}}: per element family and reading, cases a, b, c and the frictionless
-    problem (where the reading changes it); the sensitivity's variants (case b, 21-node). Each
-    frictional run names the frictionless run of its bound (``bound``)."""
-    groups = {}
-    for fam in FE_PUNCH["families"]:
-        groups[f"{fam}-main"] = _punch_group(f"{fam}-main", fam, "abc", ({},))
-        for reading, over in FE_PUNCH["readings"].items():
-            groups[f"{fam}-{reading}"] = _punch_group(f"{fam}-{reading}", fam, "abc", (over,), f"{fam}-main-frictionless")
-    sens = FE_PUNCH["sensitivity"]
-    base = FE_PUNCH["readings"][sens["reading"]]
-    for variant, over in sens["variants"].items():
-        groups[f"quadratic-sens-{variant}"] = _punch_group(f"quadratic-sens-{variant}", "quadratic", "b", (base, over),
-                                                           f"quadratic-{sens['reading']}-frictionless")
-    return groups
-
-
-FE_PUNCH_GROUPS = _punch_groups()
+#: {job: {run name: PunchRun}}; each frictional run names the frictionless run of its bound
+FE_PUNCH_GROUPS = fe_runs.punch_groups(FE_PUNCH)
 FE_PUNCH_RUNS = {name: run for group in FE_PUNCH_GROUPS.values() for name, run in group.items()}
 
 

@@ -5,9 +5,9 @@ import re
 
 
 rule fe_beam_case:
-    """The runs of one case and element family (roughcontact.fe.beam.beam_case): the main
-    run and the study's variants, each as <variant>.nc + .vtu + _interface.vtu in the job's
-    directory."""
+    """The runs of one case and element family (roughcontact.examples.beam.run_beam: the beam's
+    deck and law through the deck reader): the main run and the study's variants, each as
+    <variant>.nc + .vtu + _interface.vtu in the job's directory."""
     input:
         lib=FE_SOURCES,
         kernels=KERNELS_WARM,
@@ -21,7 +21,8 @@ rule fe_beam_case:
         group="|".join(re.escape(name) for name in FE_BEAM_GROUPS),
     params:
         runs=lambda w: FE_BEAM_GROUPS[w.group],
-        provenance=lambda w: {"group": w.group, "fe_beam": FE_BEAM_GROUPS[w.group], "units": dict(config["units"])},
+        provenance=lambda w: {"group": w.group, "fe_beam": {v: r.to_dict() for v, r in FE_BEAM_GROUPS[w.group].items()},
+                              "units": dict(config["units"])},
     threads: 1
     script:
         "../scripts/fe_beam_run.py"
@@ -52,7 +53,7 @@ rule fe_table4:
 rule fe_fig13:
     """Fig. 13: u_N along the beam for the three m00 (elastic, 28-node elements)."""
     input:
-        runs=fe_beam_dirs([n for n in FE_BEAM_MAIN if n.startswith("cubic-") and FE_BEAM_RUNS[n]["law"] == "elastic"]),
+        runs=fe_beam_dirs([n for n in FE_BEAM_MAIN if n.startswith("cubic-") and FE_BEAM_RUNS[n].law == "elastic"]),
         paper="config/paper_values.yaml",
         code=FE_REPORT_SOURCES,
     output:
@@ -62,8 +63,8 @@ rule fe_fig13:
     log:
         "logs/fe/fig13.log",
     params:
-        runs={n: FE_BEAM_RUNS[n] for n in FE_BEAM_MAIN if n.startswith("cubic-") and FE_BEAM_RUNS[n]["law"] == "elastic"},
-        paths=fe_beam_paths([n for n in FE_BEAM_MAIN if n.startswith("cubic-") and FE_BEAM_RUNS[n]["law"] == "elastic"]),
+        runs={n: FE_BEAM_RUNS[n] for n in FE_BEAM_MAIN if n.startswith("cubic-") and FE_BEAM_RUNS[n].law == "elastic"},
+        paths=fe_beam_paths([n for n in FE_BEAM_MAIN if n.startswith("cubic-") and FE_BEAM_RUNS[n].law == "elastic"]),
     localrule: True
     script:
         "../scripts/fe_fig13.py"
@@ -169,7 +170,8 @@ rule fe_benchmark:
 # ---------------------------------------------------------------------------------------------
 rule fe_punch_case:
     """The runs of one element family and reading (or study variant) of example 9.2
-    (roughcontact.fe.punch.punch_case): cases a, b, c and the frictionless problem of the bound,
+    (roughcontact.examples.punch.run_punch: the punch's deck and laws through the deck reader):
+    cases a, b, c and the frictionless problem of the bound,
     each as <case>.nc (the whole load history) + .vtu + _interface.vtu (maximum load)."""
     input:
         lib=FE_SOURCES,
@@ -184,7 +186,8 @@ rule fe_punch_case:
         group="|".join(re.escape(name) for name in FE_PUNCH_GROUPS),
     params:
         runs=lambda w: FE_PUNCH_GROUPS[w.group],
-        provenance=lambda w: {"group": w.group, "fe_punch": FE_PUNCH_GROUPS[w.group], "units": dict(config["units"])},
+        provenance=lambda w: {"group": w.group, "fe_punch": {n: r.to_dict() for n, r in FE_PUNCH_GROUPS[w.group].items()},
+                              "units": dict(config["units"])},
     threads: 1
     script:
         "../scripts/fe_punch_run.py"

@@ -7,7 +7,7 @@ import numpy as np
 import xarray as xr
 
 from roughcontact import io
-from roughcontact.fe.beam import BeamSpec
+from roughcontact.examples.beam import BeamSpec
 from roughcontact.paper.fe_anchors import law_key
 from roughcontact.paper.plane_stress import reference_solution
 

@@ -1,9 +1,10 @@
-"""The exported table checked in CalculiX (rule fe_calculix): paper_figures/calculix.md/.csv and
+"""The exported table checked in CalculiX (rule fe_calculix): the block, the beam, and one deck in
+both codes (a block on a base, refined); paper_figures/calculix.md/.csv and
 results/verify/calculix.checks.csv. An optional scene: without ccx it writes no checks and says
 why (VERIFICATION.md then reports it as skipped)."""
 
 from roughcontact import io
-from roughcontact.paper import calculix, report, verify
+from roughcontact.paper import calculix, calculix_deck, report, verify
 
 
 def run(cfg, beam_cfg, paths, workdir, out, log):
@@ -20,9 +21,12 @@ def run(cfg, beam_cfg, paths, workdir, out, log):
             ds = io.read_netcdf(path)
             engine[case] = (ds["point_x"].values, ds["point_y"].values, ds["point_u_N_um"].values)
         rows, checks, timings = calculix.run_scene(cfg, beam_cfg, engine, workdir, exe=exe, progress=logger.info)
+        deck_rows, deck_checks, deck_timings = calculix_deck.deck_scene(cfg, workdir, exe=exe, progress=logger.info)
+        rows, checks, timings = rows + deck_rows, checks + deck_checks, {**timings, **deck_timings}
         for c in checks:
             logger.info("%s: %s %s", c.id, c.verdict, c.detail)
-        io.write_text(out["md"], calculix.render_markdown(rows, checks, timings, calculix.ccx_version(exe)))
+        md = calculix.render_markdown(rows, checks, timings, calculix.ccx_version(exe))
+        io.write_text(out["md"], md + "\n".join(calculix_deck.render_deck_markdown(deck_rows)) + "\n")
         keys = list(dict.fromkeys(k for r in rows for k in r))  # block and beam rows: one header
         io.write_text(out["csv"], report.render_rows_csv([{k: r.get(k, "") for k in keys} for r in rows]))
         io.write_text(out["checks"], verify.checks_to_csv(checks))

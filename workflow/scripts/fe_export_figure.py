@@ -2,7 +2,7 @@
 exported as in the CalculiX scene; PNG and the per-row errors as CSV."""
 
 from roughcontact import io
-from roughcontact.fe.beam import BeamSpec
+from roughcontact.examples.beam import BeamSpec
 from roughcontact.interface.export import overclosure_table
 from roughcontact.paper import export_figure, plots, report
 from roughcontact.statistics import SpectralMoments

@@ -2,7 +2,7 @@
 transition layer, the rigid-base interface, the symmetry supports and the load."""
 
 from roughcontact import io
-from roughcontact.fe.beam import BeamSpec, beam_mesh
+from roughcontact.examples.beam import BeamSpec, beam_mesh
 from roughcontact.paper import drawings, plots
 
 
@@ -13,8 +13,8 @@ def run(spec, out, log):
         fig = drawings.mesh_figure(
             mesh, title=f"Fig. 10: quarter of the beam on a rigid base ({spec.elements} transition layer, "
                         f"{mesh.summary()['nodes']} nodes)",
-            supports=[("xmin", "symmetry u_x = 0 (mid-length)"), ("ymin", "symmetry u_y = 0 (mid-thickness)"),
-                      ("base", "rigid base (interface side A fixed)")],
+            supports=[("XSYMMETRY", "symmetry u_x = 0 (mid-length)"), ("YSYMMETRY", "symmetry u_y = 0 (mid-thickness)"),
+                      ("BASENODES", "rigid base (every node held)")],
             loads=[((0.0, 0.0, spec.height), (0.0, 0.0, -30.0), "P/4 (line load at x = 0)")],
             azim=125.0, elev=18.0, figsize=(9.0, 6.0),  # seen from the outer face y = b/2 and the mid-length end
         )

@@ -8,11 +8,9 @@ from pathlib import Path
 import yaml
 
 from roughcontact import io
+from roughcontact.examples.section9 import FIG13_MARKERS
 from roughcontact.paper import plots
 from roughcontact.plots.style import parameter_label
-
-#: the paper's markers (Fig. 13 caption): m00 = 0.0625 triangles, 0.3125 crosses, 0.625 squares
-MARKERS = {0.0625: "^", 0.3125: "x", 0.625: "s"}
 
 
 def run(paths, runs, paper, out, log):
@@ -23,16 +21,16 @@ def run(paths, runs, paper, out, log):
         profiles, marks, buf = {}, {}, _io.StringIO()
         w = csv.writer(buf, lineterminator="\n")
         w.writerow(["m00_um2", "x_mm", "u_N_um", "p_N_N_per_mm2"])
-        for name in sorted(paths, key=lambda n: -runs[n]["m00"]):
+        for name in sorted(paths, key=lambda n: -runs[n].m00):
             run_cfg = runs[name]
             ds = io.read_netcdf(paths[name])
-            label = parameter_label("m00", run_cfg["m00"], "um^2")
+            label = parameter_label("m00", run_cfg.m00, "um^2")
             x, u = ds["x"].values, ds["u_N_um"].values
-            profiles[label] = (x, u, MARKERS.get(run_cfg["m00"], "o"))
-            i = rows.index(run_cfg["case"])
+            profiles[label] = (x, u, FIG13_MARKERS.get(run_cfg.m00, "o"))
+            i = rows.index(run_cfg.case)
             marks[label] = ((0.0, float(printed["u_N_centre"][i])), (float(x[-1]), float(printed["u_N_end"][i])))
             for xi, ui, pi in zip(x, u, ds["p_N"].values):
-                w.writerow([repr(run_cfg["m00"]), repr(float(xi)), repr(float(ui)), repr(float(pi))])
+                w.writerow([repr(run_cfg.m00), repr(float(xi)), repr(float(ui)), repr(float(pi))])
         fig = plots.fig13(profiles, marks)
         io.write_text(out["csv"], buf.getvalue())
         plots.save(fig, out["png"])

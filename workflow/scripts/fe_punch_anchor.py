@@ -7,7 +7,7 @@ from pathlib import Path
 import yaml
 
 from roughcontact import io
-from roughcontact.fe.punch_mesh import PunchGeometry
+from roughcontact.examples.punch_geometry import PunchGeometry
 from roughcontact.paper import fe_anchors, fe_punch, report, verify
 
 

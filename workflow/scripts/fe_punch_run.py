@@ -1,12 +1,13 @@
 """The runs of one element family and reading of example 9.2 (rule fe_punch_case): each solved by
-roughcontact.fe.punch.punch_case and written as <case>.nc (the whole load history, with
-provenance), <case>.vtu and <case>_interface.vtu (the maximum load) in the job's directory."""
+roughcontact.examples.punch.run_punch (the punch's deck and law through the deck reader) and
+written as <case>.nc (the whole load history, with provenance), <case>.vtu and
+<case>_interface.vtu (the maximum load) in the job's directory."""
 
 import logging
 from pathlib import Path
 
 from roughcontact import io
-from roughcontact.fe.punch import punch_case, to_dataset
+from roughcontact.examples.punch import run_punch, to_dataset
 
 
 def run(runs, provenance, out_dir, log):
@@ -21,13 +22,13 @@ def run(runs, provenance, out_dir, log):
                 logger.info("%s: level %d/%d: patch load %.6g N (quarter), %d Newton iterations, %d cut-backs",
                             case, k, n, inc.level, inc.iterations, inc.cutbacks)
 
-            result = punch_case(run_cfg, progress)
+            result = run_punch(run_cfg, progress=progress)
             ds = to_dataset(result)
             logging.getLogger(io.PROGRESS).info("%s: D %.5g N mm, %d slipped points, %d dofs, %d contact points, %.2f s", case,
                         ds.attrs["D_max_area_whole"], ds.attrs["slipped_points"], result.n_dofs, result.n_points,
                         result.seconds)
             io.write_netcdf(ds, out / f"{case}.nc", config={**provenance, "run": name},
-                            settings={"solver": "Newton (roughcontact.fe.solver)", "rule": result.spec.rule})
+                            settings={"solver": "Newton (roughcontact.fe.solver)", "rule": "lobatto"})
             result.write_vtu(out / f"{case}.vtu")
 
 

@@ -24,9 +24,9 @@ def run(paths, runs, cfg, paper, expected, out, log):
         tolerances = {"printed_rounding": tol["printed_rounding"],
                       **{m: {"u_N_centre": tol["centre"], "u_N_end": tol["end"]} for m in models}}
         checks = verify.table_cell_checks("table4", paper_table, results, models, tolerances)
-        open_points = {f"fe-{runs[n]['family']}": {} for n in runs}
+        open_points = {f"fe-{runs[n].family}": {} for n in runs}
         for name, run_cfg in runs.items():
-            open_points[f"fe-{run_cfg['family']}"][run_cfg["case"]] = attrs[name]["open_points"]
+            open_points[f"fe-{run_cfg.family}"][run_cfg.case] = attrs[name]["open_points"]
         checks += fe_beam.table4_claims("table4", results, cfg["cases"], open_points, cfg["claims"])
         checks += fe_beam.equilibrium_checks("table4", attrs, runs, cfg["equilibrium"])
         checks = verify.apply_expectations(checks, yaml.safe_load(Path(expected).read_text()))

@@ -24,7 +24,7 @@ def run(paths, runs, cfg, paper, expected, out, log):
         io.write_text(out["md"], report.render_table_markdown(title, checks, paper_table, models, provenance=shown))
         io.write_text(out["csv"], report.render_table_csv(checks, models))
         rows = fe_punch.reading_rows({n: ds.attrs for n, ds in data.items()},
-                                     {n: r for n, r in runs.items() if r["case"] != "frictionless"}, bounds)
+                                     {n: r for n, r in runs.items() if r.case != "frictionless"}, bounds)
         io.write_text(out["readings_md"], fe_punch.render_readings_markdown(rows, checks, shown, cfg["d_attr"]))
         io.write_text(out["readings_csv"], report.render_rows_csv(
             rows, units={**{k: "N mm" for k in rows[0] if k.startswith("D_") or k == "bound"}, "seconds": "s"}))

@@ -491,8 +491,8 @@ def _check_range(material: InterfaceMaterial, resp, increment: int, level: float
     iterations may cross it: they see the law's extrapolated tail)."""
     beyond = material.beyond_table(resp.state)
     if beyond.any():
-        law = material.normal
         bad = np.flatnonzero(beyond)
+        law = material.normal_of(bad[0]) if hasattr(material, "normal_of") else material.normal  # a deck's laws
         raise LawRangeError(increment, level, residual, (
             f"p_N up to {np.max(resp.state[bad, friction.T_N]):.6g} at {bad.size} interface points "
             f"(first {bad[:10].tolist()}), u_N up to {np.max(resp.state[bad, friction.U_N]):.6g} "

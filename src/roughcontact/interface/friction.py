@@ -157,7 +157,7 @@ Errata and readings (section 8)
 * (115)/(116): μ_α with α the *slip* angle gives the traction magnitude on the limit ellipse only
   for the associated rule (k = 1, α the normal angle); in general |t_T| = p_N μ_β,
   μ_β = (cos²β/μ_x² + sin²β/μ_y²)^{-1/2} (:func:`directional_coefficient_beta`).
-* Fig. 18/19 presets (:func:`fig18_preset`): ν_x = ν_y = 0.125 fixes a circular potential
+* Fig. 18/19 presets (:func:`roughcontact.examples.section9.fig18_preset`): ν_x = ν_y = 0.125 fixes a circular potential
   (k = 0 here); k_N is not given numerically (from (95)); n = 275 1/mm from the 9.2 text;
   k_T/k_N = 0.7 is prescribed there although (96)/Table 3 give 0.79-0.94 for ν = 0.25.
   With equal axial parameters the per-axis hardening (89)-(90) still makes μ_x ≠ μ_y once
@@ -189,7 +189,7 @@ __all__ = [
     "normal_law", "initial_state", "update",
     "limit_function", "utilisation", "hardening_modulus", "continuum_tangent",
     "slip_angle", "traction_angle", "directional_coefficient_115",
-    "directional_coefficient_beta", "FIG18_CASES", "fig18_preset",
+    "directional_coefficient_beta",
 ]
 
 #: S = diag(1, 1, −1): an engine's jump (slip_x, slip_y, opening) times S is this module's
@@ -564,39 +564,3 @@ def continuum_tangent(model, state, k_N, k_Tx, k_Ty):
     De = np.diag([float(k_Tx), float(k_Ty), float(k_N)])
     A = c @ De @ d  # eq. (108)/(124)
     return De - np.outer(De @ d, De @ c) / (A - H)  # eq. (105)
-
-
-# ---------------------------------------------------------------------------------------------
-# presets: Fig. 18 / Fig. 19 caption, cases (a)-(c)
-# ---------------------------------------------------------------------------------------------
-#: Fig. 18/19 cases. ν_x = ν_y = 0.125 for all three: a circular slip potential, i.e. k = 0
-#: (only ν_y/ν_x matters). n_x = n_y = 275 1/mm (section 9.2 text). k_N is not given
-#: numerically (it comes from (95) for the captions' surface), so stiffnesses are ratios.
-FIG18_CASES = {
-    "a": dict(mu_m=0.2, mu_o=1.0, kTx_over_kN=0.7, kTy_over_kN=0.7),
-    "b": dict(mu_m=0.5, mu_o=0.5, kTx_over_kN=0.7, kTy_over_kN=0.7),
-    "c": dict(mu_m=0.5, mu_o=0.5, kTx_over_kN=0.7, kTy_over_kN=1.0),
-}
-
-
-_N_FIG18_PER_MM = 275.0
-
-
-_LENGTH_PER_MM = {"mm": 1.0, "um": 1e3, "µm": 1e3, "m": 1e-3}
-
-
-def fig18_preset(case, k_N, length_unit="mm"):
-    """Orthotropic model and stiffnesses of Fig. 18/19 case 'a', 'b' or 'c'.
-
-    ``k_N`` is the normal stiffness per unit area (user supplied; the paper gets it from (95)),
-    ``length_unit`` the displacement unit used for u ('mm', 'um'/'µm', 'm'): n is converted
-    from 275 1/mm. Returns (OrthotropicHardening, dict(k_N=..., k_Tx=..., k_Ty=...))."""
-    if case not in FIG18_CASES:
-        raise ValueError(f"case must be one of {sorted(FIG18_CASES)}, got {case!r}")
-    if length_unit not in _LENGTH_PER_MM:
-        raise ValueError(f"length_unit must be one of {sorted(_LENGTH_PER_MM)}")
-    k_N = positive("k_N", k_N)
-    c = FIG18_CASES[case]
-    n = _N_FIG18_PER_MM / _LENGTH_PER_MM[length_unit]
-    model = OrthotropicHardening(c["mu_m"], c["mu_m"], c["mu_o"], c["mu_o"], n, n, k=0.0)
-    return model, dict(k_N=k_N, k_Tx=c["kTx_over_kN"] * k_N, k_Ty=c["kTy_over_kN"] * k_N)

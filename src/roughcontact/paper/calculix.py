@@ -6,7 +6,7 @@ Two problems (issue 14; docs/fe-export.md), built as CalculiX input decks from t
 * **block** — a steel cube (1 mm, one C3D8) on a base of modulus 1e12 N/mm² (rigid to 1e-12)
   through node-to-surface contact, under uniform pressures p, one step each: the closure of
   the interface must be the table's (and, within rtol, the law's) inverse c(p);
-* **beam** — example 9.1 (:mod:`roughcontact.fe.beam`): the quarter beam x ∈ [0, 250],
+* **beam** — example 9.1 (:mod:`roughcontact.examples.beam`): the quarter beam x ∈ [0, 250],
   y ∈ [0, 5] mm, C3D20 elements on the engine's mesh lines (n_x uniform, n_z graded by
   z_ratio from the contact face), frictionless node-to-surface contact on a fixed rigid block,
   symmetry u_x = 0 on x = 0 and u_y = 0 on y = 0, the line load at x = 0 on the top face
@@ -36,7 +36,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..fe.beam import BeamSpec
+from ..examples.beam import BeamSpec
 from ..fe.mesh import graded
 
 __all__ = ["ccx_executable", "ccx_version", "run_ccx", "block_deck", "beam_deck", "node_prints",

@@ -64,7 +64,7 @@ def _check(scene, model, quantity, row, ok, detail, description, target, value, 
 def beam_anchor_checks(runs: Mapping[str, Mapping[str, Any]], data: Mapping[str, Any],
                        reference: Mapping[str, Mapping[str, np.ndarray]], cfg: Mapping[str, Any]) -> list[Check]:
     """Four checks per anchored run (``runs``: name → run config; ``data``: name → the run's
-    dataset, :meth:`roughcontact.fe.beam.BeamResult.to_dataset`): u_N at the centre and the end
+    dataset, :meth:`roughcontact.examples.beam.BeamResult.to_dataset`): u_N at the centre and the end
     and the largest deviation along the centre line against the 2D solution of its law
     (``reference[law_key(run)]``: x_mm, u_N_um, and error_centre_um, error_end_um, the 2D
     solution's change from a mesh half as fine), and |4 Σ w p_N − P|/P of the written points.
@@ -114,7 +114,7 @@ def beam_anchor_checks(runs: Mapping[str, Mapping[str, Any]], data: Mapping[str,
 # ---------------------------------------------------------------------------------------------
 def _mu_range(case: str) -> tuple[float, float]:
     """(μ_min, μ_max) of (89) for a Fig. 18 case: μ runs from μ_m μ_o (no slip yet) to μ_m."""
-    from ..interface.friction import FIG18_CASES
+    from ..examples.section9 import FIG18_CASES
 
     c = FIG18_CASES[case]
     lo, hi = sorted((c["mu_m"] * c["mu_o"], c["mu_m"]))
@@ -124,7 +124,7 @@ def _mu_range(case: str) -> tuple[float, float]:
 def punch_anchor_checks(runs: Mapping[str, Mapping[str, Any]], data: Mapping[str, Any],
                         bounds: Mapping[str, float], quarter_area: Mapping[str, float],
                         cfg: Mapping[str, Any], d_attr: str) -> list[Check]:
-    """Checks of every punch run from its dataset (:func:`roughcontact.fe.punch.to_dataset`):
+    """Checks of every punch run from its dataset (:func:`roughcontact.examples.punch.to_dataset`):
     equilibrium at every level (``quarter_area``: name → the quarter punch's top area [mm²]),
     the friction limit at every point and level, the reported D against the fields
     (``d_attr`` and its "end" twin), and D ≤ the frictionless bound (``bounds``: name → bound,

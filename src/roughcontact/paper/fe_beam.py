@@ -1,7 +1,8 @@
 """Example 9.1 as the paper reports it: Table 4 (cells, prose claims, equilibrium), the study of
 what the paper leaves open (tangential restraint, E*, printed Y, mesh) and the runs' speed and
-size. The runs themselves are :func:`roughcontact.fe.beam.beam_case` (configured by
-workflow/rules/common.smk from config.yaml ``fe.beam``); this module only judges and reports them
+size. The runs themselves are :func:`roughcontact.examples.beam.run_beam` of the typed runs
+:func:`roughcontact.examples.runs.beam_runs` builds from config.yaml ``fe.beam``; this module only
+judges and reports them
 (no I/O; the workflow scripts read and write), so editing it never re-runs a computation.
 """
 
@@ -21,15 +22,15 @@ __all__ = ["table4_results", "table4_claims", "equilibrium_checks", "study_check
 QUANTITIES = {"u_N_centre": "u_N_centre_um", "u_N_end": "u_N_end_um"}
 
 
-def table4_results(attrs: Mapping[str, Mapping[str, Any]], runs: Mapping[str, Mapping[str, Any]],
+def table4_results(attrs: Mapping[str, Mapping[str, Any]], runs: Mapping[str, Any],
                    cases: list[str]) -> dict[str, dict[str, np.ndarray]]:
     """{model "fe-<family>": {quantity: values at the printed cases}} from the runs' dataset
     attributes (``attrs[run]``), for :func:`roughcontact.paper.verify.table_cell_checks`."""
     out: dict[str, dict[str, list]] = {}
     for name, run in runs.items():
-        model = out.setdefault(f"fe-{run['family']}", {q: [math.nan] * len(cases) for q in QUANTITIES})
+        model = out.setdefault(f"fe-{run.family}", {q: [math.nan] * len(cases) for q in QUANTITIES})
         for q, attr in QUANTITIES.items():
-            model[q][cases.index(run["case"])] = float(attrs[name][attr])
+            model[q][cases.index(run.case)] = float(attrs[name][attr])
     return {m: {q: np.asarray(v) for q, v in per.items()} for m, per in out.items()}
 
 
@@ -89,7 +90,7 @@ def table4_claims(scene: str, results: Mapping[str, Mapping[str, np.ndarray]], c
     return out
 
 
-def equilibrium_checks(scene: str, attrs: Mapping[str, Mapping[str, Any]], runs: Mapping[str, Mapping[str, Any]],
+def equilibrium_checks(scene: str, attrs: Mapping[str, Mapping[str, Any]], runs: Mapping[str, Any],
                        cfg: Mapping[str, Any]) -> list[Check]:
     """One row per run: |integrated interface pressure − applied load| / applied load at the
     final load (every result records it; Newton's force criterion bounds it)."""
@@ -98,11 +99,11 @@ def equilibrium_checks(scene: str, attrs: Mapping[str, Mapping[str, Any]], runs:
         err = float(attrs[name]["equilibrium_error"])
         ok = err <= cfg["rtol"]
         out.append(Check(
-            id=numerics_id(scene, f"fe-{run['family']}", "equilibrium", run["case"], "case"), kind="numerics",
+            id=numerics_id(scene, f"fe-{run.family}", "equilibrium", run.case, "case"), kind="numerics",
             scene=scene, verdict=REPRODUCED if ok else NOT_REPRODUCED,
             detail=f"|Σ w p_N − P|/P = {err:.1e} {'≤' if ok else '>'} {cfg['rtol']:.0e}",
-            description="equilibrium: applied load = integrated interface pressure", model=f"fe-{run['family']}",
-            quantity="equilibrium", s=run["case"], value=err, error=err, tolerance=cfg["rtol"],
+            description="equilibrium: applied load = integrated interface pressure", model=f"fe-{run.family}",
+            quantity="equilibrium", s=run.case, value=err, error=err, tolerance=cfg["rtol"],
             tolerance_why=cfg["why"]))
     return out
 
@@ -170,15 +171,15 @@ def variant_of(name: str) -> str:
     return name.split("-", 2)[2]
 
 
-def study_rows(attrs: Mapping[str, Mapping[str, Any]], runs: Mapping[str, Mapping[str, Any]]) -> list[dict]:
+def study_rows(attrs: Mapping[str, Mapping[str, Any]], runs: Mapping[str, Any]) -> list[dict]:
     """One row per run: what varies, the deflections and the cost."""
     rows = []
     for name, run in runs.items():
         a = attrs[name]
         rows.append({
-            "run": name, "family": run["family"], "case": run["case"], "m00": run["m00"], "law": run["law"],
-            "variant": variant_of(name), "tangential": run["tangential"], "mu": run.get("mu"),
-            "E_star": run["E_star"], "n_x": a["spec_n_x"], "n_z": a["spec_n_z"],
+            "run": name, "family": run.family, "case": run.case, "m00": run.m00, "law": run.law,
+            "variant": variant_of(name), "tangential": run.tangential, "mu": run.mu,
+            "E_star": run.E_star, "n_x": a["spec_n_x"], "n_z": a["spec_n_z"],
             "u_N_centre_um": float(a["u_N_centre_um"]), "u_N_end_um": float(a["u_N_end_um"]),
             "open_points": int(a["open_points"]), "dofs": int(a["dofs"]), "interface_points": int(a["interface_points"]),
             "seconds": float(a["seconds"]),

@@ -1,8 +1,9 @@
 """Example 9.2 as the paper reports it: Table 5 (the dissipation D of cases a, b, c with both
 element families) under every reading of what the paper leaves open, with the frictionless
 upper bound; the prose of section 9.2 as checks; the sensitivity of D. The runs are
-:func:`roughcontact.fe.punch.punch_case`; this module judges their datasets
-(:func:`roughcontact.fe.punch.to_dataset`) and reports (no I/O).
+:func:`roughcontact.examples.punch.run_punch` of the typed runs
+:func:`roughcontact.examples.runs.punch_groups` builds; this module judges their datasets
+(:func:`roughcontact.examples.punch.to_dataset`) and reports (no I/O).
 
 A run's dataset has, per load level and contact point of the quarter, t_x, t_y, p_N [N/mm²],
 the plastic slips slip_x_um, slip_y_um and the relative tangential displacements from the seated
@@ -17,7 +18,7 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from ..fe.punch import bound, mu_max
+from ..examples.punch import bound, mu_max
 from ..interface.friction import SLIP, STICK
 from .report import md_escape
 from .verify import NOT_REPRODUCED, REPRODUCED, Check, claim_id, table_cell_checks
@@ -35,8 +36,8 @@ READING_LABEL = {"main": "1000 N on the whole punch", "quarter": "1000 N on the 
 
 def _reading_of(name: str, run: Mapping[str, Any]) -> str:
     """The reading (or sensitivity variant) of a run named <family>-<reading>-<case>."""
-    family = run["geometry"]["family"]
-    return name[len(family) + 1:len(name) - len(run["case"]) - 1]
+    family = run.family
+    return name[len(family) + 1:len(name) - len(run.case) - 1]
 
 
 def reading_models(families, readings) -> dict[str, dict[str, str]]:
@@ -60,30 +61,32 @@ def table5_results(attrs: Mapping[str, Mapping[str, Any]], runs: Mapping[str, Ma
     out: dict[str, dict[str, list]] = {}
     for name, run in runs.items():
         reading = _reading_of(name, run)
-        if run["case"] == "frictionless" or reading not in readings:
+        if run.case == "frictionless" or reading not in readings:
             continue
-        model = f"fe-{run['geometry']['family']}" + ("" if reading == "main" else f"-{reading}")
+        model = f"fe-{run.family}" + ("" if reading == "main" else f"-{reading}")
         d = out.setdefault(model, {"D": [math.nan] * 3})
-        d["D"]["abc".index(run["case"])] = float(attrs[name][d_attr])
+        d["D"]["abc".index(run.case)] = float(attrs[name][d_attr])
     return {m: {q: np.asarray(v) for q, v in per.items()} for m, per in out.items()}
 
 
-def run_bounds(data: Mapping[str, Any], runs: Mapping[str, Mapping[str, Any]]) -> dict[str, float]:
-    """The frictionless bound (:func:`roughcontact.fe.punch.bound`, whole punch [N·mm]) of every
-    frictional run, from its own pressures and the relative slips of the frictionless run it
-    names (``run["bound"]``)."""
+def run_bounds(data: Mapping[str, Any], runs: Mapping[str, Any]) -> dict[str, float]:
+    """The frictionless bound (:func:`roughcontact.examples.punch.bound`, whole punch [N·mm]) of
+    every frictional run, from its own pressures and the relative displacements of the
+    frictionless run it names (``run.bound``), from the unloaded start (the seated ones plus the
+    seating's own, where the plastic slips of D start)."""
     out = {}
     for name, run in runs.items():
-        if run["case"] == "frictionless":
+        if run.case == "frictionless":
             continue
-        ds, free = data[name], data[run["bound"]]
+        ds, free = data[name], data[run.bound]
         k, kf = int(ds.attrs["max_index"]), int(free.attrs["max_index"])
-        slip = np.hypot(free["jump_x_um"].values[kf], free["jump_y_um"].values[kf]) / 1000.0  # µm → mm
-        out[name] = bound(ds["point_weight"].values, ds["p_N"].values[k], slip, mu_max(run["case"]))
+        jx, jy = (free[f"jump_{a}_um"].values[kf] + free[f"seating_jump_{a}_um"].values for a in "xy")
+        slip = np.hypot(jx, jy) / 1000.0  # µm → mm
+        out[name] = bound(ds["point_weight"].values, ds["p_N"].values[k], slip, mu_max(run.case))
     return out
 
 
-def table5_checks(data: Mapping[str, Any], runs: Mapping[str, Mapping[str, Any]], cfg: Mapping[str, Any],
+def table5_checks(data: Mapping[str, Any], runs: Mapping[str, Any], cfg: Mapping[str, Any],
                   paper_table: Mapping[str, Any]) -> tuple[list[Check], dict, dict[str, float]]:
     """Every check of example 9.2 from the runs' datasets (run name → dataset; ``cfg``:
     config.yaml fe.punch): Table 5's cells under each reading, the prose of section 9.2 under the
@@ -99,8 +102,8 @@ def table5_checks(data: Mapping[str, Any], runs: Mapping[str, Mapping[str, Any]]
     claims_cfg = {**cfg["claims"], "d_attr": cfg["d_attr"]}
     for reading in ("main", cfg["sensitivity"]["reading"]):
         for fam in cfg["families"]:
-            cases = {runs[n]["case"]: data[n] for n in runs
-                     if n.startswith(f"{fam}-{reading}-") and runs[n]["case"] != "frictionless"}
+            cases = {runs[n].case: data[n] for n in runs
+                     if n.startswith(f"{fam}-{reading}-") and runs[n].case != "frictionless"}
             checks += punch_claims("table5", fam, cases, claims_cfg, reading)
     bounds = run_bounds(data, runs)
     for reading in readings:
@@ -274,10 +277,10 @@ def reading_rows(attrs: Mapping[str, Mapping[str, Any]], runs: Mapping[str, Mapp
     rows = []
     for name, run in runs.items():
         a = attrs[name]
-        family = run["geometry"]["family"]
+        family = run.family
         variant = _reading_of(name, run)
         rows.append({"run": name, "variant": variant, "family": family,
-                     "case": run["case"], **{k: float(v) for k, v in a.items() if str(k).startswith("D_")},
+                     "case": run.case, **{k: float(v) for k, v in a.items() if str(k).startswith("D_")},
                      "bound": bounds.get(name, math.nan), "slipped_points": int(a["slipped_points"]),
                      "utilisation_max": float(a["utilisation_max"]),
                      "dofs": int(a["dofs"]), "interface_points": int(a["interface_points"]),

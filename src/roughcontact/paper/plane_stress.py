@@ -11,7 +11,7 @@ imports nothing from ``roughcontact.fe``). What it shares with the engine is the
 given: the library's normal law (:class:`~roughcontact.interface.InterfaceLaw`), itself checked
 against direct integration and mpmath.
 
-The problem (the engine's reading of example 9.1, :mod:`roughcontact.fe.beam`): a beam of length
+The problem (the engine's reading of example 9.1, :mod:`roughcontact.examples.beam`): a beam of length
 L, height H and width b (E, ν) on a rigid base through the statistical interface with free
 sliding (no tangential traction), a line load across the width at mid-length on the top face,
 first the seating load, then the load; the interface law's reference state is the mean seating

@@ -20,6 +20,7 @@ from ..contact import elastoplastic_contact, resolve_material
 from ..contact.sweep import SweepSpec, parameter_units, run_sweep
 from ..contact.units import PARAMETER_LONG_NAMES
 from ..contact.units import attrs as contact_attrs
+from ..examples.section9 import fig18_preset
 from ..integrals.reference_elastoplastic import reference_integrals
 from ..interface import InterfaceLaw, NormalLawTable, friction
 from ..statistics.surface import SpectralMoments
@@ -222,7 +223,7 @@ def hardening_path(mu_m: float, mu_o: float, n: float, *, k_T: float, p_N: float
 def fig18_paths(cases: Sequence[str], k_N: float, p_N: float, *, angle_deg: float, u_max: float,
                 steps: int, length_unit: str = "um", stress_unit: str = "N/mm^2"):
     """Tractions against imposed slip for the parameter sets (a), (b), (c) of the Fig. 18
-    caption (friction.fig18_preset) at one material point under pressure p_N: the tangential
+    caption (examples.section9.fig18_preset) at one material point under pressure p_N: the tangential
     displacement goes from 0 to ``u_max`` along ``angle_deg`` from x and back to 0 (2 ×
     ``steps`` increments), and — for the symmetry claims — the mirror path with x and y
     exchanged (dim ``path``: "direct", "swapped"). Variables over (case, path, step): imposed
@@ -236,7 +237,7 @@ def fig18_paths(cases: Sequence[str], k_N: float, p_N: float, *, angle_deg: floa
     cols = (friction.T_X, friction.T_Y, friction.UP_X, friction.UP_Y, friction.DISSIPATION)
     out = {v: np.empty((len(cases), 2, incr.shape[1])) for v in names}
     for c, case in enumerate(cases):
-        model, k = friction.fig18_preset(case, k_N, length_unit)
+        model, k = fig18_preset(case, k_N, length_unit)
         s = _drive(model, incr, k["k_N"], k["k_Tx"], k["k_Ty"], p_N)
         for v, col in zip(names, cols):
             out[v][c] = s[..., col]

@@ -1,15 +1,15 @@
-"""The mesh of example 9.2 (Buczkowski & Kleiber 2009): an elastic flat punch on an elastic
-foundation (Figs 14, 15; contact points of Figs 18, 19).
+"""The geometry of example 9.2 (Buczkowski & Kleiber 2009): an elastic flat punch on an elastic
+foundation (Figs 14, 15; contact points of Figs 18, 19), and its input deck.
 
 A punch 20 × 20 × 10 mm stands on a foundation 100 × 100 × 50 mm. By symmetry a quarter is
 meshed: punch x, y ∈ [0, 10], z ∈ [0, 10]; foundation x, y ∈ [0, 50], z ∈ [−50, 0]; the
 contact plane is z = 0 and the symmetry planes are x = 0 and y = 0. Choices (the paper gives
 only the element types and the contact-point counts):
 
-* hex20 elements, with a layer of transition elements on both contact faces: HEX21 and 18-node
-  interface elements ("quadratic"), HEX28 and 32-node ones ("cubic"). The foundation's
-  transition layer covers its whole top face (a HEX28 does not conform with a hex20 beside it);
-  the interface covers the punch's face only (side A = foundation, normal +z);
+* C3D20 elements; the deck reader turns the contact layers into transition elements: HEX21
+  and 18-node interface elements ("quadratic"), HEX28 and 32-node ones ("cubic"). The
+  foundation's contact surface is its whole top face (a HEX28 does not conform with a HEX20
+  beside it); the interface covers the punch's face only (master = foundation, normal +z);
 * ``n_punch`` elements across the quarter punch: 4 quadratic (9 × 9 = 81 interface nodes, the
   contact points of Fig. 18 under nodal integration) or 3 cubic (10 × 10 = 100, Fig. 19). The
   foundation's x/y grid under the punch IS the punch's grid (a node-matching interface);
@@ -25,10 +25,9 @@ only the element types and the contact-point counts):
   the punch keeps n_punch elements across (so the contact-point count does not change), spread
   as evenly as possible on either side of load_patch/2, hence unequal sizes.
 
-Names (after :func:`.mesh.merge`): blocks "foundation.bulk", "foundation.transition",
-"punch.bulk", "punch.transition"; node sets :data:`SYMMETRY_X` (u_x = 0), :data:`SYMMETRY_Y`
-(u_y = 0), :data:`BASE` (the foundation's base, to be fixed); face set :data:`LOAD_PATCH` (the
-loaded faces of the punch's top, outward +z); interface "interface". Lengths in mm.
+Names in the deck (:func:`roughcontact.examples.punch.punch_deck`): elsets FOUNDATION, PUNCH,
+PUNCHTOP, LOADPATCH; node sets :data:`SYMMETRY_X` (u_x = 0), :data:`SYMMETRY_Y` (u_y = 0),
+:data:`BASE` (u_z = 0); surfaces FOUNDATIONTOP (master), PUNCHBOTTOM (slave). Lengths in mm.
 """
 
 from __future__ import annotations
@@ -37,20 +36,18 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..fe.mesh import graded
 from ..validation import choice, positive
-from .mesh import FaceSet, Mesh, box, graded, interface_between, merge
+from .section9 import PUNCH
 
-__all__ = ["PunchGeometry", "punch_mesh", "summary", "figure_annotations", "SYMMETRY_X", "SYMMETRY_Y", "BASE",
-           "LOAD_PATCH", "INTERFACE", "FAMILIES"]
+__all__ = ["PunchGeometry", "SYMMETRY_X", "SYMMETRY_Y", "BASE", "FAMILIES", "figure_annotations"]
 
 FAMILIES = ("quadratic", "cubic")
 #: elements across the quarter punch giving the paper's 81 / 100 contact points
 DEFAULT_N_PUNCH = {"quadratic": 4, "cubic": 3}
-SYMMETRY_X = ("foundation.xmin", "punch.xmin")
-SYMMETRY_Y = ("foundation.ymin", "punch.ymin")
-BASE = "foundation.zmin"
-LOAD_PATCH = "punch.load_patch"
-INTERFACE = "interface"
+SYMMETRY_X = "XSYMMETRY"
+SYMMETRY_Y = "YSYMMETRY"
+BASE = "BASE"
 _ON_GRID = 1e-9  # relative tolerance [–] for "load_patch/2 is already an element edge"
 
 
@@ -77,10 +74,10 @@ class PunchGeometry:
     loaded patch [mm, side on the whole punch]. None fields take the defaults of the module
     docstring at construction (so a built geometry states every number it meshes)."""
 
-    punch_half_width: float = 10.0
-    punch_height: float = 10.0
-    foundation_half_width: float = 50.0
-    foundation_depth: float = 50.0
+    punch_half_width: float = PUNCH["punch_width"] / 2.0
+    punch_height: float = PUNCH["punch_height"]
+    foundation_half_width: float = PUNCH["foundation_width"] / 2.0
+    foundation_depth: float = PUNCH["foundation_depth"]
     family: str = "quadratic"
     n_punch: int | None = None
     n_punch_z: int | None = None
@@ -154,37 +151,6 @@ class PunchGeometry:
         first = self.punch_height / self.n_punch_z
         ratio = self.depth_ratio or _first_size_ratio(self.foundation_depth, self.n_depth, first)
         return graded(-self.foundation_depth, 0.0, self.n_depth, 1.0 / ratio)  # graded's "first" is the bottom
-
-
-def _with_load_patch(punch: Mesh, half: float) -> Mesh:
-    """``punch`` with the face set "load_patch": its top faces inside [0, half]² (whole faces:
-    ``half`` is an element edge, so testing the face centres is exact)."""
-    top = punch.face_sets["zmax"]
-    centre = punch.points[top.face_nodes].mean(axis=1)
-    inside = np.flatnonzero((centre[:, 0] < half) & (centre[:, 1] < half))
-    patch = FaceSet(top.block_index, top.cell_indices[inside], top.face_nodes[inside], top.face_element)
-    return Mesh(punch.points, punch.blocks, punch.node_sets, {**punch.face_sets, "load_patch": patch},
-                punch.interfaces, punch.name)
-
-
-def punch_mesh(geometry: PunchGeometry | None = None) -> Mesh:
-    """The quarter punch on the quarter foundation, joined by the interface (names: module
-    docstring). Foundation nodes come first, then the punch's."""
-    g = PunchGeometry() if geometry is None else geometry
-    xy, fxy = g.punch_edges(), g.foundation_xy_edges()
-    foundation = box(fxy, fxy, g.foundation_z_edges(), contact_face="top", family=g.family, name="foundation")
-    punch = box(xy, xy, g.punch_z_edges(), contact_face="bottom", family=g.family, name="punch")
-    mesh = merge(foundation, _with_load_patch(punch, g.load_half))
-    return interface_between(mesh, "foundation.contact", "punch.contact", interface_name=INTERFACE)
-
-
-def summary(mesh: Mesh) -> dict:
-    """Sizes of a punch mesh: nodes, dofs, cells per block, interface elements and contact
-    points (the interface nodes: the points of the nodal rule)."""
-    s = mesh.summary()
-    return {"nodes": s["nodes"], "dofs": s["dofs"], "cells": s["cells"],
-            "interface_elements": s["interface_elements"][INTERFACE],
-            "contact_points": s["interface_nodes"][INTERFACE]}
 
 
 def figure_annotations(geometry: PunchGeometry, arrows: int = 3) -> dict:

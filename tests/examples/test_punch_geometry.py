@@ -1,4 +1,5 @@
-"""The quarter model of example 9.2: punch on foundation (roughcontact.fe.punch_mesh)."""
+"""The quarter model of example 9.2: punch on foundation (roughcontact.examples.punch_geometry), as
+the engine meshes its deck (roughcontact.examples.punch.punch_mesh: the deck reader)."""
 
 from __future__ import annotations
 
@@ -10,9 +11,10 @@ import pytest
 from roughcontact.fe.element import HEX20, HEX21, HEX28
 from roughcontact.fe.interface_element import INTERFACE18, INTERFACE32, face_frame
 from roughcontact.fe.interface_points import interface_points
-from roughcontact.fe.punch_mesh import (
-    BASE, INTERFACE, LOAD_PATCH, SYMMETRY_X, SYMMETRY_Y, PunchGeometry, figure_annotations, punch_mesh, summary,
-)
+from roughcontact.examples.punch import PunchSpec, punch_deck, summary
+from roughcontact.examples.punch import punch_mesh as _punch_mesh
+from roughcontact.examples.punch_geometry import BASE, SYMMETRY_X, SYMMETRY_Y, PunchGeometry, figure_annotations
+from roughcontact.fe.deck import read_deck
 from roughcontact.fe.quadrature import tensor_rule
 
 FAMILIES = [("quadratic", 81), ("cubic", 100)]
@@ -26,16 +28,27 @@ def case(request):
     return family, points, g, punch_mesh(g)
 
 
+def punch_mesh(g):
+    return _punch_mesh(PunchSpec(geometry=g))
+
+
 def body_nodes(mesh, body):
-    """Sorted node indices of the cells of ``body`` ("foundation" | "punch")."""
-    return np.unique(np.concatenate([b.cells.ravel() for b in mesh.blocks if b.name.startswith(body + ".")]))
+    """Sorted node indices of the cells of ``body`` ("foundation" | "punch"): the engine's
+    points of the deck's node set <BODY>NODES and those made on its contact face."""
+    return np.unique(np.concatenate([mesh.node_sets[f"{body.upper()}NODES"]]
+                                    + [i.side("A" if body == "foundation" else "B").ravel() for i in mesh.interfaces]))
 
 
-def face_area(mesh, fs):
-    """Area [mm²] and unit normals of a face set (5 × 5 Gauss points per face)."""
-    rule = tensor_rule("gauss", (5, 5))
-    R, dA = face_frame(fs.face_element, mesh.points[fs.face_nodes], rule.points)
-    return float(np.sum(dA * rule.weights)), R[..., 2, :]
+def patch_faces(g):
+    """The patch's top faces (QUAD8, outward) of the punch deck: the elements of LOADPATCH."""
+    from roughcontact.fe.element import QUAD8
+    from roughcontact.fe.mesh import local_face
+
+    deck = read_deck("punch.inp", punch_deck(PunchSpec(geometry=g)))
+    conn = deck.connectivity[np.searchsorted(deck.element_ids, deck.elsets["LOADPATCH"])]
+    nodes = deck.coords[deck.node_index(conn)]
+    _, idx = local_face(HEX20, 2, 1)
+    return QUAD8, nodes[:, list(idx)]
 
 
 # ---------------------------------------------------------------------------------------------
@@ -48,7 +61,7 @@ def test_contact_points_are_the_papers(case):
     s = summary(m)
     assert s["contact_points"] == points and s["interface_elements"] == g.n_punch ** 2
     assert s["dofs"] == 3 * s["nodes"] == m.n_dofs
-    assert m.interfaces[0].name == INTERFACE
+    assert m.interfaces[0].name == "0:ROUGH"
     assert m.interfaces[0].element is {"quadratic": INTERFACE18, "cubic": INTERFACE32}[family]
     assert np.isclose(ip.weights.sum(), 100.0, rtol=1e-12)  # the quarter punch's face, 10 × 10 mm
     assert np.allclose(ip.frames[:, 2], (0.0, 0.0, 1.0), atol=1e-12)  # from the foundation up
@@ -62,12 +75,14 @@ def test_interface_sides_and_node_matching_grid(case):
     foundation, punch = body_nodes(m, "foundation"), body_nodes(m, "punch")
     assert np.intersect1d(foundation, punch).size == 0
     assert np.all(np.isin(block.side("A"), foundation)) and np.all(np.isin(block.side("B"), punch))
-    assert np.array_equal(m.points[block.side("A")], m.points[block.side("B")])  # bitwise
+    # the deck's nodes coincide bitwise; the nodes the reader makes on each face (from each body's
+    # own element geometry) to rounding; the interface uses side A's geometry only
+    np.testing.assert_allclose(m.points[block.side("A")], m.points[block.side("B")], rtol=0, atol=1e-13)
     # the foundation's top grid under the punch is the punch's bottom grid, node for node
     w = g.punch_half_width
     top = foundation[(m.points[foundation, 2] == 0.0) & np.all(m.points[foundation, :2] <= w, axis=1)]
     bottom = punch[m.points[punch, 2] == 0.0]
-    as_set = lambda idx: {tuple(p) for p in m.points[idx]}  # noqa: E731
+    as_set = lambda idx: {tuple(p) for p in np.round(m.points[idx], 9)}  # noqa: E731  (made nodes: to rounding)
     assert as_set(top) == as_set(bottom) and len(top) == len(bottom) == np.unique(block.side("B")).size
     assert np.array_equal(g.foundation_xy_edges()[:g.n_punch + 1], g.punch_edges())
 
@@ -78,16 +93,18 @@ def test_interface_sides_and_node_matching_grid(case):
 def test_blocks_jacobians_volumes_and_no_duplicates(case):
     family, _, g, m = case
     transition = {"quadratic": HEX21, "cubic": HEX28}[family]
-    assert [(b.name, b.element) for b in m.blocks] == [
-        ("foundation.bulk", HEX20), ("foundation.transition", transition),
-        ("punch.bulk", HEX20), ("punch.transition", transition)]
+    assert [(b.name, b.element) for b in m.blocks] == [("STEEL/hex20", HEX20), ("STEEL/" + transition.name, transition)]
     rule = tensor_rule("gauss", (3, 3, 3))
     volume = {"foundation": 0.0, "punch": 0.0}
+    punch = set(body_nodes(m, "punch").tolist())
     for b in m.blocks:
         for xi in (b.element.nodes, rule.points):  # at every node and Gauss point
             J = np.einsum("pad,cak->cpdk", b.element.shape_gradients(xi), m.points[b.cells])
             assert np.all(np.linalg.det(J) > 0), b.name
-        volume[b.name.split(".")[0]] += np.sum(np.linalg.det(J) * rule.weights)
+        in_punch = np.array([c[0] in punch for c in b.cells])
+        v = np.sum(np.linalg.det(J) * rule.weights, axis=1)
+        volume["punch"] += v[in_punch].sum()
+        volume["foundation"] += v[~in_punch].sum()
     assert volume["foundation"] == pytest.approx(50.0 ** 3, rel=1e-12)
     assert volume["punch"] == pytest.approx(10.0 ** 3, rel=1e-12)
     for body in ("foundation", "punch"):
@@ -97,25 +114,24 @@ def test_blocks_jacobians_volumes_and_no_duplicates(case):
 
 def test_node_sets_for_supports(case):
     _, _, g, m = case
-    for names, axis in ((SYMMETRY_X, 0), (SYMMETRY_Y, 1)):
-        for name in names:
-            body = body_nodes(m, name.split(".")[0])
-            on_plane = body[m.points[body, axis] == 0.0]
-            assert np.array_equal(m.node_sets[name], on_plane), name
+    for name, axis in ((SYMMETRY_X, 0), (SYMMETRY_Y, 1)):
+        both = np.concatenate([body_nodes(m, "foundation"), body_nodes(m, "punch")])
+        on_plane = both[m.points[both, axis] == 0.0]
+        assert np.array_equal(m.node_sets[name], np.sort(on_plane)), name
     assert np.allclose(m.points[m.node_sets[BASE], 2], -g.foundation_depth)
     assert m.node_sets[BASE].size == (2 * (g.n_punch + g.n_outer) + 1) ** 2 - (g.n_punch + g.n_outer) ** 2
 
 
 def test_load_patch_faces(case):
     _, _, g, m = case
-    fs = m.face_sets[LOAD_PATCH]
-    area, normals = face_area(m, fs)
-    assert area == pytest.approx((g.load_patch / 2.0) ** 2, rel=1e-12)
-    assert np.allclose(normals, (0.0, 0.0, 1.0), atol=1e-12)
-    x = m.points[fs.face_nodes]
-    assert np.all(x[..., 2] == g.punch_height) and x[..., :2].max() == pytest.approx(g.load_patch / 2.0)
+    face, nodes = patch_faces(g)
+    rule = tensor_rule("gauss", (5, 5))
+    R, dA = face_frame(face, nodes, rule.points)
+    assert float(np.sum(dA * rule.weights)) == pytest.approx((g.load_patch / 2.0) ** 2, rel=1e-12)
+    assert np.allclose(R[..., 2, :], (0.0, 0.0, 1.0), atol=1e-12)
+    assert np.all(nodes[..., 2] == g.punch_height) and nodes[..., :2].max() == pytest.approx(g.load_patch / 2.0)
     # default reading: the quarter's corner element (the 2 × 2 central elements of the whole punch)
-    assert len(fs) == 1 and g.load_patch == pytest.approx(2.0 * g.punch_half_width / g.n_punch)
+    assert len(nodes) == 1 and g.load_patch == pytest.approx(2.0 * g.punch_half_width / g.n_punch)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -146,7 +162,10 @@ def test_load_patch_edge_is_inserted_keeping_the_contact_points(family, load_pat
     assert edges.size == g.n_punch + 1 and np.any(edges == load_patch / 2.0)
     m = punch_mesh(g)
     assert summary(m)["contact_points"] == dict(FAMILIES)[family]
-    assert face_area(m, m.face_sets[LOAD_PATCH])[0] == pytest.approx((load_patch / 2.0) ** 2, rel=1e-12)
+    face, nodes = patch_faces(g)
+    rule = tensor_rule("gauss", (5, 5))
+    assert float(np.sum(face_frame(face, nodes, rule.points)[1] * rule.weights)) == pytest.approx(
+        (load_patch / 2.0) ** 2, rel=1e-12)
     assert interface_points(m, "lobatto").weights.sum() == pytest.approx(100.0, rel=1e-12)
 
 
@@ -180,7 +199,7 @@ def test_figures_14_15_draw(case, tmp_path):
     fig = drawings.mesh_figure(m, title=family, **figure_annotations(g))
     main, detail = fig.axes
     gids = lambda ax: [a.get_gid() for a in list(ax.collections) + list(ax.lines)]  # noqa: E731
-    assert {"plate:foundation.xmin", "plate:punch.ymin", "plate:foundation.zmin", "interface-face",
+    assert {f"plate:{SYMMETRY_X}", f"plate:{SYMMETRY_Y}", f"plate:{BASE}", "interface-face",
             "transition-layer", "detail-box", "load:4"} <= set(gids(main))
     assert not [k for k in gids(detail) if k and k.startswith(("plate:", "support:"))]  # supports: left only
     (nodes,) = [a for a in detail.collections if a.get_gid() == "interface-nodes"]

@@ -1,0 +1,410 @@
+"""The interface laws of a deck run: LAW.yaml, typed (docs/own-model.md).
+
+One file gives the law of every ``*SURFACE INTERACTION`` of a deck by name::
+
+    length_unit: mm            # the deck's length unit (m, mm, um, nm); forces in N, stresses N/mm^2
+    interactions:
+      ROUGH:                   # a *SURFACE INTERACTION name of the deck (case-insensitive)
+        moments: {m00: 0.0625, m20: 8.0e-5, m02: 8.0e-4, m40: 1.04e-6, m04: 1.04e-4, unit: um}
+        lay_direction: [1, 0, 0]       # the moments' x axis (along the lay) in the deck's axes
+        E_star: 78065.86               # optional: else from the two bodies' *ELASTIC (eq. 42)
+        law: elastic                   # or elastoplastic, with psi or yield_strength
+        seating_pressure: 1.0e-3       # relative displacements are measured from this state
+        friction: none                 # or {coulomb: {mu: 0.2, kt_over_kn: 0.7}}
+                                       # or {orthotropic: {mu_m: 0.5, mu_o: 0.5, nu_x: 0.125, nu_y: 0.125,
+                                       #     n_x: 275, n_y: 275, kt_over_kn: [0.7, 1.0]}}  (n in 1/length_unit)
+
+Units: the deck's units are any consistent set (N, mm, N/mm²; or N, m, Pa): ``E_star``,
+``seating_pressure``, ``yield_strength`` and ``pressure_range`` are in the deck's stress unit
+(the unit of its *ELASTIC moduli), ``n_x``, ``n_y`` in 1/``length_unit``; the moments in their
+own ``unit`` (converted to the deck's length by the ratio of the two units).
+
+Beyond the issue's schema, optional keys: ``moments`` may be the path of a JSON file of
+``roughcontact moments --json`` (m00 … m04 at its top level and its length unit in
+``units.dx``; relative to the law file); ``mu_m``, ``mu_o`` and ``kt_over_kn`` take one value
+or a pair (x, y); ``k`` (the potential's shape exponent, ν_y/ν_x = (μ_y/μ_x)^k) instead of
+ν_x = ν_y (k = 0: a circular potential); ``friction: {stick: {kt_over_kn: a}}`` (tangential
+springs without slip); ``tangential_form`` (interface.friction.TANGENTIAL_FORMS);
+``pressure_range: [p_light, p_max]`` (the tabulated normal law's range; default
+[1e-17, 0.1] × E*).
+"""
+
+from __future__ import annotations
+
+import functools
+import json
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ..interface import friction
+from ..statistics import SpectralMoments
+
+__all__ = ["LENGTH_UNITS", "LawError", "NoFriction", "Coulomb", "Stick", "Orthotropic", "InteractionLaw",
+           "LawFile", "read_law_file", "law_file_from_dict", "DEFAULT_PRESSURE_RANGE"]
+
+#: the length units: their power of ten in metres (unit = 10^k m), so that ratios are exact
+LENGTH_UNITS = {"m": 0, "mm": -3, "um": -6, "µm": -6, "nm": -9}
+#: the tabulated range of the normal law without ``pressure_range``, times E*
+DEFAULT_PRESSURE_RANGE = (1e-17, 0.1)
+_MOMENTS = ("m00", "m20", "m02", "m40", "m04")
+
+
+class LawError(ValueError):
+    """A law file that cannot be used: the message names the file and the key."""
+
+
+def _fail(where: str, message: str):
+    raise LawError(f"{where}: {message}")
+
+
+def _number(value, where: str, *, positive=True, allow_zero=False) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        _fail(where, f"must be a number, got {value!r}")
+    x = float(value)
+    if not math.isfinite(x) or (positive and not (x > 0 or (allow_zero and x == 0))):
+        _fail(where, f"must be {'non-negative' if allow_zero else 'positive'} and finite, got {value!r}")
+    return x
+
+
+def _pair(value, where: str) -> tuple[float, float]:
+    """One value for both axes, or a pair (x, y)."""
+    if isinstance(value, (list, tuple)):
+        if len(value) != 2:
+            _fail(where, f"give one value or a pair [x, y], got {value!r}")
+        return _number(value[0], f"{where}[0]"), _number(value[1], f"{where}[1]")
+    x = _number(value, where)
+    return x, x
+
+
+def _keys(d, where: str, required=(), optional=()) -> dict:
+    if not isinstance(d, dict):
+        _fail(where, f"must be a mapping, got {d!r}")
+    for k in required:
+        if k not in d:
+            _fail(where, f"missing key {k!r}")
+    extra = sorted(set(d) - set(required) - set(optional))
+    if extra:
+        _fail(where, f"unknown key {extra[0]!r} (expected {', '.join(list(required) + list(optional))})")
+    return d
+
+
+# ---------------------------------------------------------------------------------------------
+# friction
+# ---------------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class NoFriction:
+    """``friction: none``: free sliding (no tangential traction)."""
+
+    def model(self, law_per_deck: float):
+        return friction.Frictionless()
+
+    def factors(self):
+        return None  # k_T is not used
+
+    def to_yaml(self):
+        return "none"
+
+
+@dataclass(frozen=True)
+class Coulomb:
+    """A constant Coulomb limit μ with tangential springs k_T = kt_over_kn·k_N (section 8.2 with μ_o = 1)."""
+
+    mu: float
+    kt_over_kn: tuple[float, float]
+
+    def model(self, law_per_deck: float):
+        return friction.IsotropicHardening(mu_m=self.mu)
+
+    def factors(self):
+        return self.kt_over_kn
+
+    def to_yaml(self):
+        return {"coulomb": {"mu": self.mu, "kt_over_kn": list(self.kt_over_kn)}}
+
+
+@dataclass(frozen=True)
+class Stick:
+    """Tangential springs k_T = kt_over_kn·k_N without a friction limit (friction.NoSlip)."""
+
+    kt_over_kn: tuple[float, float]
+
+    def model(self, law_per_deck: float):
+        return friction.NoSlip()
+
+    def factors(self):
+        return self.kt_over_kn
+
+    def to_yaml(self):
+        return {"stick": {"kt_over_kn": list(self.kt_over_kn)}}
+
+
+@dataclass(frozen=True)
+class Orthotropic:
+    """The orthotropic slip-hardening law of section 8.1 (friction.OrthotropicHardening): μ_m, μ_o
+    and n (1/deck length) per axis (x along the lay), the potential's exponent k, k_T/k_N per axis."""
+
+    mu_m: tuple[float, float]
+    mu_o: tuple[float, float]
+    n: tuple[float, float]
+    kt_over_kn: tuple[float, float]
+    k: float = 0.0
+    nu: tuple[float, float] | None = None  # ν_x = ν_y as given (k = 0), kept for the file
+
+    def model(self, law_per_deck: float):
+        """n converted to the law's length unit (n per deck length / law units per deck length)."""
+        return friction.OrthotropicHardening(self.mu_m[0], self.mu_m[1], self.mu_o[0], self.mu_o[1],
+                                             self.n[0] / law_per_deck, self.n[1] / law_per_deck, k=self.k)
+
+    def factors(self):
+        return self.kt_over_kn
+
+    def to_yaml(self):
+        def one(pair):
+            return pair[0] if pair[0] == pair[1] else list(pair)
+
+        shape = {"nu_x": self.nu[0], "nu_y": self.nu[1]} if self.nu is not None else {"k": self.k}
+        return {"orthotropic": {"mu_m": one(self.mu_m), "mu_o": one(self.mu_o), **shape, "n_x": self.n[0],
+                                "n_y": self.n[1], "kt_over_kn": one(self.kt_over_kn)}}
+
+
+def _friction(value, where: str):
+    if value in (None, "none"):
+        return NoFriction()
+    if not isinstance(value, dict) or len(value) != 1:
+        _fail(where, f"must be none, {{coulomb: ...}}, {{orthotropic: ...}} or {{stick: ...}}, got {value!r}")
+    (kind, body), = value.items()
+    at = f"{where}.{kind}"
+    if kind == "coulomb":
+        d = _keys(body, at, ("mu", "kt_over_kn"))
+        return Coulomb(_number(d["mu"], f"{at}.mu"), _pair(d["kt_over_kn"], f"{at}.kt_over_kn"))
+    if kind == "stick":
+        d = _keys(body, at, ("kt_over_kn",))
+        return Stick(_pair(d["kt_over_kn"], f"{at}.kt_over_kn"))
+    if kind == "orthotropic":
+        d = _keys(body, at, ("mu_m", "mu_o", "n_x", "n_y", "kt_over_kn"), ("nu_x", "nu_y", "k"))
+        nu = None
+        if "k" in d:
+            if "nu_x" in d or "nu_y" in d:
+                _fail(at, "give either k or nu_x = nu_y, not both")
+            k = _number(d["k"], f"{at}.k", positive=False)
+        else:
+            if "nu_x" not in d or "nu_y" not in d:
+                _fail(at, "give nu_x and nu_y (or the exponent k)")
+            nu = (_number(d["nu_x"], f"{at}.nu_x"), _number(d["nu_y"], f"{at}.nu_y"))
+            if nu[0] != nu[1]:
+                _fail(at, f"nu_x = {nu[0]:g} != nu_y = {nu[1]:g}: the library's potential has nu_y/nu_x = "
+                          "(mu_y/mu_x)^k (friction.OrthotropicHardening); give k instead")
+            k = 0.0  # ν_x = ν_y: a circular potential (only the ratio matters)
+        return Orthotropic(_pair(d["mu_m"], f"{at}.mu_m"), _pair(d["mu_o"], f"{at}.mu_o"),
+                           (_number(d["n_x"], f"{at}.n_x", allow_zero=True),
+                            _number(d["n_y"], f"{at}.n_y", allow_zero=True)),
+                           _pair(d["kt_over_kn"], f"{at}.kt_over_kn"), k, nu)
+    _fail(where, f"unknown friction {kind!r} (none, coulomb, orthotropic, stick)")
+
+
+# ---------------------------------------------------------------------------------------------
+# one interaction
+# ---------------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class InteractionLaw:
+    """The law of one interaction (module docstring): surface moments in ``moments_unit``, the
+    lay direction (deck axes), the normal law (``law``, ``psi`` or ``yield_strength``,
+    ``E_star`` or None), the seating pressure, friction, the tabulated range and the reading
+    of the tangential law (93)."""
+
+    moments: SpectralMoments
+    moments_unit: str
+    lay_direction: tuple[float, float, float]
+    law: str
+    seating_pressure: float
+    friction: object = field(default_factory=NoFriction)
+    E_star: float | None = None
+    psi: float | None = None
+    yield_strength: float | None = None
+    pressure_range: tuple[float, float] | None = None
+    tangential_form: str = "incremental-end"
+
+    def __post_init__(self):
+        if self.moments_unit not in LENGTH_UNITS:
+            raise LawError(f"moments unit must be one of {', '.join(LENGTH_UNITS)}, got {self.moments_unit!r}")
+        if self.law not in ("elastic", "elastoplastic"):
+            raise LawError(f"law must be elastic or elastoplastic, got {self.law!r}")
+        if self.law == "elastic" and (self.psi is not None or self.yield_strength is not None):
+            raise LawError("psi and yield_strength belong to law: elastoplastic")
+        if self.law == "elastoplastic" and (self.psi is None) == (self.yield_strength is None):
+            raise LawError("law: elastoplastic needs exactly one of psi and yield_strength")
+        if self.tangential_form not in friction.TANGENTIAL_FORMS:
+            raise LawError(f"tangential_form must be one of {', '.join(friction.TANGENTIAL_FORMS)}")
+
+    def law_per_deck(self, length_unit: str) -> float:
+        """Law (moments) length units per deck length unit, e.g. 1000 for µm moments in an mm deck."""
+        return 10.0 ** (LENGTH_UNITS[length_unit] - LENGTH_UNITS[self.moments_unit])
+
+    def material(self, length_unit: str, E_star: float):
+        """The engine's :class:`~.contact.InterfaceMaterial` (E_star: this law's, or the bodies');
+        its table is built once per surface, law, E* and range in a process."""
+        return _material(self, length_unit, float(E_star))
+
+    def to_yaml(self) -> dict:
+        """The law as the mapping of the law file."""
+        out = {"moments": {**{m: float(getattr(self.moments, m)) for m in _MOMENTS}, "unit": self.moments_unit},
+               "lay_direction": list(self.lay_direction), "law": self.law,
+               "seating_pressure": self.seating_pressure, "friction": self.friction.to_yaml()}
+        for key in ("E_star", "psi", "yield_strength"):
+            if getattr(self, key) is not None:
+                out[key] = getattr(self, key)
+        if self.pressure_range is not None:
+            out["pressure_range"] = list(self.pressure_range)
+        if self.tangential_form != "incremental-end":
+            out["tangential_form"] = self.tangential_form
+        return out
+
+
+@functools.lru_cache(maxsize=32)
+def _table(moments, level: str, normal, pressure_range):
+    """The tabulated normal law (interface.NormalLawTable, the FE accuracy "plot"), built once per
+    surface, law, E* or material and range in a process (immutable; friction cases share it)."""
+    from ..interface import NormalLawTable
+
+    kw = {"E_star": normal} if level == "elastic" else {"material": normal}
+    return NormalLawTable.build(moments, level, pressure_range=pressure_range, accuracy="plot", validity="off", **kw)
+
+
+def _material(law: InteractionLaw, length_unit: str, E_star: float):
+    """:meth:`InteractionLaw.material`: the normal law tabulated and put in its reference state
+    at the seating pressure, k_T = kt_over_kn · k_N (Mindlin's ratio (96) of the representative
+    summit ellipse where the friction gives none: :func:`.contact.statistical_interface`'s rule)."""
+    from ..contact import resolve_material
+    from ..interface import InterfaceLaw, mindlin_kT_over_kN
+    from ..interface.tangential import representative_aspect
+    from .contact import InterfaceMaterial
+
+    if law.law == "elastic":
+        normal = E_star
+    else:
+        by = {"psi": law.psi} if law.psi is not None else {"Y": law.yield_strength}
+        normal = resolve_material(law.moments, E_star=E_star, **by)
+    p_range = law.pressure_range or tuple(f * E_star for f in DEFAULT_PRESSURE_RANGE)
+    if not p_range[0] < law.seating_pressure < p_range[1]:
+        raise LawError(f"seating_pressure {law.seating_pressure:g} lies outside the tabulated pressures "
+                       f"{p_range[0]:g} ... {p_range[1]:g} (E* = {E_star:g}): check the stress unit, or give "
+                       "pressure_range")
+    try:
+        table = _table(law.moments, law.law, normal, tuple(p_range))
+    except (RuntimeError, ValueError) as exc:  # a pressure of the range out of the model's reach (ValueError since issue 22)
+        raise LawError(f"the normal law cannot be tabulated over the pressures {p_range[0]:g} ... {p_range[1]:g} "
+                       f"with E* = {E_star:g} ({exc}): check E_star and the stress unit, or give a "
+                       "pressure_range the law reaches") from None
+    factors = law.friction.factors() or mindlin_kT_over_kN(representative_aspect(law.moments), 0.25)
+    per = law.law_per_deck(length_unit)
+    return InterfaceMaterial(InterfaceLaw.from_pressure(table, law.seating_pressure, factors),
+                             law.friction.model(per), length_per_mm=per, tangential_form=law.tangential_form)
+
+
+def _moments(value, where: str, base: Path | None):
+    if isinstance(value, str):  # a `roughcontact moments --json` file
+        path = (base / value) if base is not None else Path(value)
+        try:
+            data = json.loads(path.read_text())
+        except (OSError, json.JSONDecodeError) as exc:
+            _fail(where, f"cannot read the moments file {path}: {exc}")
+        unit = (data.get("units") or {}).get("dx") if isinstance(data, dict) else None
+        value = {**{m: data.get(m) for m in _MOMENTS}, "unit": unit}
+        if unit in (None, "L"):
+            _fail(where, f"{path} does not state its length unit (run `roughcontact moments --length-unit um ...`)")
+    d = _keys(value, where, (*_MOMENTS, "unit"))
+    unit = d["unit"]
+    if unit not in LENGTH_UNITS:
+        _fail(f"{where}.unit", f"must be one of {', '.join(LENGTH_UNITS)}, got {unit!r}")
+    values = {m: _number(d[m], f"{where}.{m}", positive=False) for m in _MOMENTS}
+    try:
+        return SpectralMoments(**values), unit
+    except (ValueError, TypeError) as exc:
+        _fail(where, f"invalid moments: {exc}")
+
+
+def _interaction(d, where: str, base: Path | None) -> InteractionLaw:
+    d = _keys(d, where, ("moments", "lay_direction", "law", "seating_pressure"),
+              ("E_star", "psi", "yield_strength", "friction", "pressure_range", "tangential_form"))
+    moments, unit = _moments(d["moments"], f"{where}.moments", base)
+    lay = d["lay_direction"]
+    if not isinstance(lay, (list, tuple)) or len(lay) != 3:
+        _fail(f"{where}.lay_direction", f"must be a vector [x, y, z], got {lay!r}")
+    lay = tuple(_number(v, f"{where}.lay_direction", positive=False) for v in lay)
+    if math.hypot(*lay) == 0.0:
+        _fail(f"{where}.lay_direction", "must not be zero")
+    opt = {}
+    for key in ("E_star", "psi", "yield_strength"):
+        if d.get(key) is not None:
+            opt[key] = _number(d[key], f"{where}.{key}")
+    if d.get("pressure_range") is not None:
+        pr = d["pressure_range"]
+        if not isinstance(pr, (list, tuple)) or len(pr) != 2:
+            _fail(f"{where}.pressure_range", f"must be [p_light, p_max], got {pr!r}")
+        lo, hi = (_number(v, f"{where}.pressure_range") for v in pr)
+        if not lo < hi:
+            _fail(f"{where}.pressure_range", f"needs p_light < p_max, got {pr!r}")
+        opt["pressure_range"] = (lo, hi)
+    if "tangential_form" in d:
+        opt["tangential_form"] = d["tangential_form"]
+    try:
+        return InteractionLaw(moments, unit, lay, d["law"], _number(d["seating_pressure"], f"{where}.seating_pressure"),
+                              _friction(d.get("friction", "none"), f"{where}.friction"), **opt)
+    except LawError as exc:
+        if str(exc).startswith(where):
+            raise
+        _fail(where, str(exc))
+
+
+# ---------------------------------------------------------------------------------------------
+# the file
+# ---------------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class LawFile:
+    """A law file: the deck's length unit and the law of every interaction (upper-case names)."""
+
+    length_unit: str
+    interactions: dict[str, InteractionLaw]
+
+    def __post_init__(self):
+        if self.length_unit not in LENGTH_UNITS:
+            raise LawError(f"length_unit must be one of {', '.join(LENGTH_UNITS)}, got {self.length_unit!r}")
+
+    def to_yaml(self) -> str:
+        import yaml
+
+        data = {"length_unit": self.length_unit,
+                "interactions": {name: law.to_yaml() for name, law in self.interactions.items()}}
+        return yaml.safe_dump(data, sort_keys=False, default_flow_style=None)
+
+
+def law_file_from_dict(data, where: str = "law file", base: Path | None = None) -> LawFile:
+    """A :class:`LawFile` from the parsed mapping (module docstring); LawError naming the key."""
+    d = _keys(data, where, ("length_unit", "interactions"))
+    if d["length_unit"] not in LENGTH_UNITS:
+        _fail(f"{where}: length_unit", f"must be one of {', '.join(LENGTH_UNITS)}, got {d['length_unit']!r}")
+    inter = d["interactions"]
+    if not isinstance(inter, dict) or not inter:
+        _fail(f"{where}: interactions", "must map at least one interaction name to its law")
+    laws = {}
+    for name, body in inter.items():
+        key = str(name).upper()
+        if key in laws:
+            _fail(f"{where}: interactions", f"{name!r} is given twice (names are case-insensitive)")
+        laws[key] = _interaction(body, f"{where}: interactions.{name}", base)
+    return LawFile(d["length_unit"], laws)
+
+
+def read_law_file(path) -> LawFile:
+    """Read LAW.yaml (module docstring)."""
+    import yaml
+
+    path = Path(path)
+    try:
+        data = yaml.safe_load(path.read_text(encoding="utf-8"))
+    except OSError as exc:
+        raise LawError(f"{path}: cannot read: {exc.strerror}") from None
+    except yaml.YAMLError as exc:
+        raise LawError(f"{path}: not YAML: {' '.join(str(exc).split())}") from None
+    return law_file_from_dict(data, str(path), path.parent)

@@ -1,0 +1,126 @@
+"""One engine path: the beam and the punch as decks through the reader and the solver give the
+results of commit 6539136 (before they were decks), to 1e-9. The references were computed by
+that commit's own code (tests/examples/data/capture_6539136.py, provenance in the file): per run
+the deflections, pressures and tractions (beam), the whole history of every contact point and
+the dissipation under every reading (punch). Points are matched by their coordinates.
+
+The robust Newton of issue 23 (trial states on the law's extrapolated tail, a line search)
+takes other iterations to the same converged states, except where 6539136 cut an increment
+back (a trial past the table's heavy end) and the law depends on the path (stick, friction):
+there the old results are those of the half steps, the new ones of the increment asked for
+(measured: 1.5e-2 µm in the stick beam's u_N, 13 % and 59 % of the punches' tractions). Those runs (OLD_PATH) are compared with the
+engine's trial extrapolation and line search switched off, which restores 6539136's path
+exactly: its cut-backs, every iteration count and the results to 7e-14."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from roughcontact.examples.beam import BeamRun, BeamSpec, run_beam
+from roughcontact.examples.punch import PunchRun, PunchSpec, _history, dissipation, frictionless_bound, mu_max, run_punch
+from roughcontact.examples.punch_geometry import PunchGeometry
+
+DATA = json.loads((Path(__file__).with_name("data") / "reference_6539136.json").read_text())
+RTOL = 1e-9  # the issue's "today's results to 1e-9"; measured <= 3.9e-13 (after the robust Newton merge)
+SLOW = {"beam-quadratic-1-main", "punch-quadratic-b-main"}
+#: runs whose first load increment 6539136 cut back, with a path-dependent law
+OLD_PATH = {"beam-quadratic-3-stick-patch", "punch-quadratic-b-quarter", "punch-quadratic-a-patch-start"}
+
+
+@pytest.fixture
+def engine_path(monkeypatch):
+    """Per run: the default engine (None), or for OLD_PATH runs the engine without trial
+    extrapolation and line search (a trial past the table cuts the increment back, as in
+    6539136): its NewtonOptions."""
+    from roughcontact.fe.contact import InterfaceMaterial
+    from roughcontact.fe.solver import NewtonOptions
+
+    def setup(name):
+        if name not in OLD_PATH:
+            return None
+        respond = InterfaceMaterial.respond
+        monkeypatch.setattr(InterfaceMaterial, "respond",
+                            lambda self, committed, d_jump, *, extrapolate=False: respond(self, committed, d_jump))
+        return NewtonOptions(line_search=False)
+    return setup
+
+
+def _iterations_agree(name, new, recorded):
+    """Equal on the old path; else the same number of increments."""
+    return new == recorded if name in OLD_PATH else len(new) == len(recorded)
+
+
+def _params(kind):
+    return [pytest.param(name, marks=[pytest.mark.slow] if name in SLOW else [])
+            for name, r in DATA["runs"].items() if r["kind"] == kind]
+
+
+def _close(new, old, what):
+    old = np.asarray(old, dtype=float)
+    scale = max(float(np.abs(old).max()), 1e-300)
+    np.testing.assert_allclose(new, old, rtol=0, atol=RTOL * scale, err_msg=what)
+
+
+def test_provenance():
+    assert DATA["provenance"]["commit"] == "6539136" and DATA["provenance"]["script"].endswith("capture_6539136.py")
+
+
+@pytest.mark.parametrize("name", _params("beam"))
+def test_beam_as_a_deck_gives_the_old_results(name, engine_path):
+    r = DATA["runs"][name]
+    options = engine_path(name)
+    old = r["run"]
+    law = old["law"]
+    run = BeamRun(spec=BeamSpec(elements=old["family"], **old["spec"]), m00=old["m00"], law=law,
+                  psi=old["psi"] if law == "elastoplastic" and old.get("Y") is None else None, Y=old.get("Y"),
+                  E_star=old["E_star"], tangential=old["tangential"], mu=old["mu"])
+    res = run_beam(run, options=options)
+    assert (res.n_dofs, res.n_points) == (r["dofs"], r["interface_points"])
+    assert _iterations_agree(name, res.newton_iterations.tolist(), r["newton_iterations"])
+    _close(res.x_mm, r["x_mm"], "x")
+    _close(res.u_N_um, r["u_N_um"], "u_N")
+    _close(res.p_N, r["p_N"], "p_N")
+    np.testing.assert_allclose(res.open_x_mm, r["open_x_mm"])
+    f = res.point_fields()
+    new_order = np.lexsort((np.round(f["x"][:, 1], 9), np.round(f["x"][:, 0], 9)))
+    old_order = np.lexsort((np.round(r["point_y"], 9), np.round(r["point_x"], 9)))
+    for key, new in (("point_u_N_um", f["u_N_um"]), ("point_p_N", f["p_N"]), ("point_t_x", f["t_x"]),
+                     ("point_t_y", f["t_y"])):
+        _close(new[new_order], np.asarray(r[key])[old_order], key)
+    np.testing.assert_array_equal(f["status"][new_order], np.asarray(r["point_status"])[old_order])
+    assert res.equilibrium_error < 1e-10
+
+
+@pytest.mark.parametrize("name", _params("punch"))
+def test_punch_as_a_deck_gives_the_old_results(name, engine_path):
+    r = DATA["runs"][name]
+    options = engine_path(name)
+    old = r["run"]
+    spec = PunchSpec(geometry=PunchGeometry(**old["geometry"]),
+                     **{k: old[k] for k in ("load", "load_on", "seating_pressure", "increments", "unload_increments")})
+    run = PunchRun(case=old["case"], spec=spec, m00=old["m00"], law=old["law"],
+                   psi=old["psi"] if old["law"] == "elastoplastic" else None,
+                   tangential_form=old.get("tangential_form", "incremental-end"), surface=tuple(old["surface"].items()))
+    res = run_punch(run, options=options)
+    assert (res.n_dofs, res.n_points) == (r["dofs"], r["interface_points"])
+    assert _iterations_agree(name, [i.iterations for i in res.deck.increments], r["newton_iterations"])
+    np.testing.assert_allclose(res.spec.levels, r["levels"], rtol=1e-15)
+    h = _history(res)
+    kept = r["kept_levels"]
+    x = res.points.x
+    new_order = np.lexsort((np.round(x[:, 1], 9), np.round(x[:, 0], 9)))
+    old_order = np.lexsort((np.round(r["y"], 9), np.round(r["x"], 9)))
+    for key in ("t_x", "t_y", "p_N", "slip_x_um", "slip_y_um", "jump_x_um", "jump_y_um"):
+        _close(h[key][kept][:, new_order], np.asarray(r[key])[:, old_order], key)
+    np.testing.assert_array_equal(h["status"][kept][:, new_order], np.asarray(r["status"])[:, old_order])
+    for key, value in r["D"].items():
+        at, weight = key.split("_")
+        assert dissipation(res, at=at, weight=weight) == pytest.approx(value, rel=RTOL, abs=1e-300), key
+    # the bound changed on purpose (issue 22: from the unloaded start, not the seated state): it
+    # can only grow by the seating's own relative displacement
+    free = run_punch(run.with_(case="frictionless"), options=options)
+    assert frictionless_bound(res, free, mu_max(old["case"])) >= r["bound"] * (1 - RTOL)
