@@ -206,16 +206,16 @@ def to_dataset(result: "PunchResult"):
     pts = result.solution.model.points
     units = {"t_x": "N/mm^2", "t_y": "N/mm^2", "p_N": "N/mm^2", "slip_x_um": "um", "slip_y_um": "um",
              "jump_x_um": "um", "jump_y_um": "um", "status": "1", "utilisation": "1"}
-    long = {"slip_x_um": "plastic slip u_x^p", "slip_y_um": "plastic slip u_y^p",
+    long = {"t_x": "tangential traction t_x", "t_y": "tangential traction t_y", "p_N": "contact pressure p_N",
+            "slip_x_um": "plastic slip u_x^p", "slip_y_um": "plastic slip u_y^p",
             "jump_x_um": "relative displacement from the seated state, x", "jump_y_um": "idem, y",
             "status": "0 stick, 1 slip, 2 open",
             "utilisation": "share of the friction limit used, (f + p_N)/p_N of (91): 1 slip, < 1 stick"}
-    data = {k: (("level", "point"), v, {"units": units[k], **({"long_name": long[k]} if k in long else {})})
-            for k, v in h.items()}
+    data = {k: (("level", "point"), v, {"units": units[k], "long_name": long[k]}) for k, v in h.items()}
     levels = np.asarray([inc.level for inc in result.solution.increments])
     data["load_quarter"] = ("level", levels, {"units": "N", "long_name": "patch load on the quarter model"})
     data["newton_iterations"] = ("level", np.asarray([i.iterations for i in result.solution.increments]),
-                                 {"units": "1"})
+                                 {"units": "1", "long_name": "Newton iterations of the load level"})
     data["point_weight"] = ("point", pts.weights, {"units": "mm^2", "long_name": "area of the contact point"})
     ds = xr.Dataset(data, coords={"x": ("point", pts.x[:, 0], {"units": "mm", "long_name": "x of the contact point"}),
                                   "y": ("point", pts.x[:, 1], {"units": "mm", "long_name": "y of the contact point"})})
