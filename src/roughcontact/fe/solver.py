@@ -232,8 +232,8 @@ class Solution:
 # linear solvers
 # ---------------------------------------------------------------------------------------------
 def _splu(A, symmetric: bool):
-    """SuperLU with a fill-reducing ordering of Aᵀ + A (3× less fill than COLAMD on these
-    stiffness matrices, benchmarks/fe_beam.py); diagonal pivoting when A is symmetric."""
+    """SuperLU with a fill-reducing ordering of Aᵀ + A (3× less fill than COLAMD on the
+    beam's stiffness matrices, environment-notes.md); diagonal pivoting when A is symmetric."""
     return spla.splu(A.tocsc(), permc_spec="MMD_AT_PLUS_A", options=dict(SymmetricMode=symmetric))
 
 
