@@ -66,18 +66,28 @@ SYMBOLS = {
 _SUPERSCRIPT = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
 
 
+def _matplotlib():
+    """matplotlib, or one line saying what to install: the library installs without it
+    (`pip install .`), the reproduction's figures need the workflow extra."""
+    try:
+        import matplotlib
+    except ModuleNotFoundError:
+        raise ModuleNotFoundError("roughcontact.paper draws its figures with matplotlib, which comes with the "
+                                  "workflow extra: pip install '.[workflow]'", name="matplotlib") from None
+    return matplotlib
+
+
 @contextlib.contextmanager
 def style() -> Iterator[None]:
     """The project's rcParams for the duration of the block."""
-    import matplotlib
-
-    with matplotlib.rc_context(STYLE):
+    with _matplotlib().rc_context(STYLE):
         yield
 
 
 def new_figure(**kwargs):
     """A Figure on an Agg canvas (no pyplot), the project's style, the constrained layout
     engine (pass ``layout=None`` to place axes by hand)."""
+    _matplotlib()
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
 
