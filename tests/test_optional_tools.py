@@ -6,9 +6,9 @@ CalculiX; "every optional tool needs its absent path exercised, not only promise
   install it, the gate passes;
 * git — provenance says "unknown" and the netCDF files are written all the same;
 * the workflow extra (snakemake, matplotlib, pyyaml, jsonschema, markdown-it-py) — every
-  command of the `roughcontact` CLI runs without it (hidden by an import hook here; the slow
-  tier installs `pip install .` into a fresh venv for real), and the reproduction's figure code
-  says in one line what to install;
+  command of the `roughcontact` CLI runs without it (slow tier: hidden by an import hook, and
+  `pip install .` into a fresh venv for real; tests/test_package.py imports the library without
+  it in the fast tier), and the reproduction's figure code says in one line what to install;
 * the interpreter — the Makefile takes the first of python3.11, 3.12, 3.13, python3 that is
   ≥ 3.11, and says in one line what is missing when none is, when `venv` cannot be created or
   when pip cannot install; the slow tier installs into Python 3.12 and 3.13 and runs tests there
@@ -124,6 +124,7 @@ def test_provenance_without_git(tmp_path, hide_programs):
 
 
 # -- the workflow extra ---------------------------------------------------------------------
+@pytest.mark.slow
 def test_every_command_runs_without_the_workflow_extra(tmp_path):
     """`pip install .` has no snakemake, matplotlib, pyyaml, jsonschema, markdown-it-py: every
     command of the CLI runs (hidden by an import hook, as if not installed)."""
