@@ -22,8 +22,6 @@ def test_closed_pipe_exits_quietly(fmt):
                        timeout=120)
     assert r.stderr == ""  # no traceback, no "Exception ignored" from the final flush
     assert r.returncode == EXIT_BROKEN_PIPE == 141  # 128 + SIGPIPE, as `seq 1 100000 | head -1` gives
-    assert len(r.stdout.splitlines()) == 1
-    if fmt:  # the whole output, unpiped: exit 0, and more than a pipe buffer
-        full = subprocess.run(["bash", "-c", cmd], capture_output=True, text=True, timeout=120)
-        assert full.returncode == 0 and len(full.stdout) > 2**16
-        assert full.stdout.splitlines()[0] == r.stdout.splitlines()[0]
+    lines = r.stdout.splitlines()
+    assert len(lines) == 1 and (lines[0] == "{" if fmt else lines[0].strip())
+    # (exit 141 proves the pipe broke: an output that fitted the pipe's buffer would end with 0)
