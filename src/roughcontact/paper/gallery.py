@@ -78,7 +78,7 @@ def render(entries: Mapping[str, Mapping[str, Any]], checks: Mapping[str, Sequen
            "its PNG; its data are in the CSV of the same name. Every number is in the "
            f"<a href='{e(report)}'>verification report</a>.</p>",
            *_summary_lines(summary),
-           "<ul>" + "".join(f"<li><a href='#{e(n)}'>{e(n)}</a>: <span class='{verdicts[n][0]}'>{e(verdicts[n][1])}"
+           "<ul>" + "".join(f"<li><a href='#{e(n)}'>{e(n)}</a>: <span class='{verdicts[n][0]}'>{typeset(verdicts[n][1])}"
                             "</span></li>" for n in entries) + "</ul>"]
     for name, entry in entries.items():
         css, text = verdicts[name]
