@@ -159,3 +159,20 @@ def test_the_checks_catch_what_they_are_for(tmp_path):
 @pytest.mark.parametrize("name", ["NOTES.md", "ARCHITECTURE.md"])
 def test_the_shared_notes_are_not_cited(name):
     assert not [p for p in FILES if p.name != "test_links.py" and name in _text(p)]
+
+
+#: ``pip install roughcontact`` / ``'roughcontact[workflow]'``: a name pip would look up on a registry
+REGISTRY_INSTALL = re.compile(r"pip install (?:-U |--upgrade )?['\"]?roughcontact(?:\[[\w,]+\])?['\"]?(?![\w@ ]*@)")
+
+
+def test_install_commands_work_from_a_clone():
+    """Issue 22: the documentation's front page said ``pip install roughcontact``, but the package is
+    on no registry. The commands given are ``pip install .`` (a clone) or a git URL."""
+    assert REGISTRY_INSTALL.search("``pip install roughcontact`` installs") and REGISTRY_INSTALL.search(
+        "pip install 'roughcontact[workflow]'")
+    assert not REGISTRY_INSTALL.search("pip install 'roughcontact @ git+<repository URL>'")
+    bad = [f"{p.relative_to(ROOT)}:{i + 1}" for p in FILES if p.name != "test_links.py"
+           for i, line in enumerate(_text(p).splitlines()) if REGISTRY_INSTALL.search(line)]
+    assert bad == []
+    for page in ("docs/index.rst", "README.md"):
+        assert "pip install ." in _text(ROOT / page), page
