@@ -305,6 +305,12 @@ def test_ci_proves_the_absent_paths_and_installs_the_tools():
     assert "optional_tool ccx calculix-ccx" in run and "optional_tool chromium chromium" in run
     steps = ["\nmake test\n", "--workflow-profile none verify gallery", "\nmake docs", "-m browser tests/test_browser.py"]
     assert [run.index(step) for step in steps] == sorted(run.index(step) for step in steps)
+    # the no-ccx runs are in the tier `make test` runs (the default markers), not deselected
+    no_ccx = ["tests/test_workflow.py::test_fe_calculix_rule_succeeds_without_ccx",
+              "tests/test_optional_tools.py::test_report_and_gate_without_ccx"]
+    r = subprocess.run([sys.executable, "-m", "pytest", "--collect-only", "-q", "-p", "no:cacheprovider", *no_ccx],
+                       cwd=ROOT, capture_output=True, text=True, timeout=300)
+    assert [line for line in r.stdout.splitlines() if "::" in line] == no_ccx, r.stdout + r.stderr
 
 
 def test_readme_states_the_fresh_clone_time_with_the_venv_and_the_load():
