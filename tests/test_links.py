@@ -176,3 +176,77 @@ def test_install_commands_work_from_a_clone():
     assert bad == []
     for page in ("docs/index.rst", "README.md"):
         assert "pip install ." in _text(ROOT / page), page
+
+
+def _prose(path: Path) -> str:
+    """What a reader reads: a Markdown/reST file whole, a Python file's comments and docstrings
+    (not its code, where ``contact`` or ``fe`` may be a local variable)."""
+    import io
+    import tokenize
+
+    text = _text(path)
+    if path.suffix != ".py":
+        return text if path.suffix in (".md", ".rst") else ""
+    out = []
+    try:
+        for tok in tokenize.generate_tokens(io.StringIO(text).readline):
+            if tok.type == tokenize.COMMENT or (
+                    tok.type == tokenize.STRING and tok.string.lstrip("rbuRBU").startswith(('"""', "'''"))):
+                out.append(tok.string)
+    except (tokenize.TokenError, SyntaxError):
+        return ""
+    return "\n".join(out)
+
+
+def _resolves(dotted: str) -> bool:
+    """``contact.elastic._theta_nodes`` → roughcontact.contact.elastic has _theta_nodes."""
+    import importlib
+
+    parts = dotted.split(".")
+    for i in range(len(parts), 0, -1):
+        try:
+            obj = importlib.import_module("roughcontact." + ".".join(parts[:i]))
+        except ImportError:
+            continue
+        for attribute in parts[i:]:
+            if not hasattr(obj, attribute):
+                return False
+            obj = getattr(obj, attribute)
+        return True
+    return False
+
+
+def missing_named_attributes(files=None, root=ROOT) -> list[str]:
+    """A name like ``contact._theta_nodes`` or ``roughcontact.files.atomic_path`` in the prose of
+    src/, tests/, workflow/ and docs/ (benchmarks/ uses the standard library's ``statistics``)
+    names a module or attribute of the package that exists; a YAML key (``config.yaml
+    fe.punch.claims``) and a file name (``interface.md``) are not such names."""
+    import pkgutil
+
+    import roughcontact
+
+    subpackages = sorted({m.name for m in pkgutil.iter_modules(roughcontact.__path__)} - {"__main__"})
+    named = re.compile(r"(?<![\w./-])(?:roughcontact\.)?((?:%s)(?:\.\w+)+)" % "|".join(subpackages))
+    if files is None:
+        files = [p for p in FILES if p.name != "test_links.py" and p.relative_to(ROOT).parts[0] in
+                 ("src", "tests", "workflow", "docs", "README.md")]
+    bad = []
+    for path in files:
+        text = _prose(path)
+        for m in named.finditer(text):
+            if re.search(r"\.(md|py|rst|smk|ya?ml|nc|png|pdf|json|csv|html|log|txt|inp|vtu|npy)$", m.group(1)) or \
+                    "yaml" in text[max(0, m.start() - 12):m.start()]:
+                continue
+            if not _resolves(m.group(1)):
+                bad.append(f"{path.relative_to(root)}: {m.group(1)}")
+    return sorted(set(bad))
+
+
+def test_named_attributes_exist(tmp_path):
+    """Issue 22: contact/elastoplastic.py pointed at ``contact._theta_nodes`` (it is
+    contact.elastic._theta_nodes)."""
+    page = tmp_path / "page.md"
+    page.write_text("as contact._theta_nodes; see contact.elastic._theta_nodes, roughcontact.files.atomic_path, "
+                    "docs/fe.md, interface.md and config.yaml fe.punch.claims\n")
+    assert missing_named_attributes([page], root=tmp_path) == ["page.md: contact._theta_nodes"]
+    assert missing_named_attributes() == []

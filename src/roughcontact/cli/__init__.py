@@ -85,7 +85,7 @@ SURFACE_UNITS = {
 }
 
 # Choices of roughcontact.contact.elastic_contact, repeated here so that building the parser
-# does not import numba (tests/cli/test_contact_commands.py checks they match contact.MODELS/HERTZ/METHODS).
+# does not import numba (tests/cli/test_contact_commands.py checks they match contact.elastic.MODELS/HERTZ/METHODS).
 MODELS = ("bgk", "gw")
 HERTZ = ("exact", "paper")
 METHODS = ("production", "reference")
