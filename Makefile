@@ -14,8 +14,11 @@ SHELL := /bin/bash
 VENV   ?= .venv
 BIN    := $(VENV)/bin
 PY     := $(BIN)/python
-# Python 3.11 if present, else python3 (checked to be >= 3.11 below).
-PYTHON ?= $(shell command -v python3.11 2>/dev/null || command -v python3 2>/dev/null)
+# The first of python3.11, python3.12, python3.13, python3 that is >= 3.11 (3.11: development
+# and CI; 3.12, 3.13: tests/test_optional_tools.py where installed). PYTHON=... overrides.
+PYTHON ?= $(shell for p in python3.11 python3.12 python3.13 python3; do \
+	command -v $$p >/dev/null 2>&1 && $$p -c 'import sys; sys.exit(sys.version_info < (3, 11))' 2>/dev/null \
+	&& { command -v $$p; break; }; done)
 CORES  ?= all
 # pytest workers (pytest-xdist): the tests are independent; "auto" = one per core
 WORKERS ?= auto
@@ -23,6 +26,11 @@ SNAKEMAKE := $(BIN)/snakemake --workflow-profile workflow/profiles/default --cor
 # Re-install only when the package metadata changes (the install is editable: source edits
 # need no re-install).
 STAMP  := $(VENV)/.installed
+# when this make started, and whether .venv/ existed then: the set-up time (creating .venv/ and
+# installing) is recorded in .venv/.setup.json and reported with the workflow's wall time
+MAKE_START := $(shell date +%s)
+VENV_EXISTED := $(wildcard $(PY))
+LOAD_START := $(shell cut -d' ' -f1-3 /proc/loadavg 2>/dev/null)
 
 .PHONY: help venv reproduce bench bench-fe test test-slow test-all verify docs dry-run ci clean distclean
 
@@ -30,12 +38,14 @@ help:
 	@sed -n '3,9p' Makefile
 
 $(PY):
-	@test -n "$(PYTHON)" || { echo "error: python3.11 (or python3 >= 3.11) not found" >&2; exit 1; }
+	@test -n "$(PYTHON)" || { echo "error: no Python >= 3.11 found (tried python3.11, python3.12, python3.13, python3): install Python 3.11, or set PYTHON=/path/to/python3.11" >&2; exit 1; }
 	@$(PYTHON) -c 'import sys; sys.exit(0 if sys.version_info >= (3, 11) else "error: Python >= 3.11 needed, found " + sys.version.split()[0])'
-	$(PYTHON) -m venv $(VENV)
+	$(PYTHON) -m venv $(VENV) || { rm -rf $(VENV); echo "error: '$(PYTHON) -m venv' failed (Debian/Ubuntu: apt-get install python3-venv, or python3.11-venv)" >&2; exit 1; }
 
 $(STAMP): pyproject.toml | $(PY)
-	$(PY) -m pip install --quiet --editable '.[workflow,test,docs,cluster,measure,bem]'
+	$(PY) -m pip install --quiet --editable '.[workflow,test,docs,cluster,measure,bem]' || { echo "error: pip could not install roughcontact into $(VENV) with Python $$($(PY) -c 'import platform; print(platform.python_version())') (tested: 3.11, 3.12, 3.13); pip's message is above" >&2; exit 1; }
+	@$(PY) workflow/scripts/record_wall_time.py setup --make-start $(MAKE_START) \
+	    --created $(if $(VENV_EXISTED),no,yes) --load-start "$(LOAD_START)" --out $(VENV)/.setup.json
 	@touch $@
 
 venv: $(STAMP)
@@ -44,7 +54,8 @@ venv: $(STAMP)
 reproduce: $(STAMP)
 	@fresh=$$(test -d results && echo no || echo yes); start=$$(date +%s); \
 	$(SNAKEMAKE) all && \
-	$(PY) workflow/scripts/record_wall_time.py --seconds $$(( $$(date +%s) - start )) --cores $(CORES) --fresh $$fresh
+	$(PY) workflow/scripts/record_wall_time.py --seconds $$(( $$(date +%s) - start )) --cores $(CORES) --fresh $$fresh \
+	    --setup $(VENV)/.setup.json --make-start $(MAKE_START) --load-start "$(LOAD_START)"
 
 # speed against error, full mode (~5 min on 2 cores; the naive tplquad, 10-60 min per quantity,
 # runs only where benchmarks/data/tplquad.json has no record; mpmath references are cached)

@@ -52,3 +52,27 @@ def test_png_is_written_under_a_temporary_name_first(tmp_path, monkeypatch):
     monkeypatch.setattr(fig, "savefig", lambda p, **kw: (seen.append(str(p)), original(p, **kw)))
     plots.save(fig, tmp_path / "f.png")
     assert seen and seen[0].endswith(".part") and (tmp_path / "f.png").exists()
+
+
+def test_a_hard_kill_leaves_a_temporary_that_the_next_run_removes(tmp_path):
+    """Issue 22: SIGKILL inside atomic_path (no cleanup runs) left paper_figures/.fig18.pdf.*.part;
+    the workflow's onstart calls remove_partial_files on its output folders."""
+    import signal
+    import subprocess
+    import sys
+
+    from roughcontact.files import remove_partial_files
+
+    (tmp_path / "paper_figures").mkdir()
+    code = ("import sys, time\nfrom roughcontact.files import atomic_path\n"
+            f"with atomic_path({str(tmp_path / 'paper_figures' / 'fig18.pdf')!r}) as tmp:\n"
+            "    tmp.write_bytes(b'%PDF half'); print(tmp, flush=True); time.sleep(600)\n")
+    proc = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, text=True)
+    part = proc.stdout.readline().strip()
+    proc.send_signal(signal.SIGKILL)
+    proc.wait(timeout=60)
+    assert os.path.basename(part).startswith(".fig18.pdf.") and os.path.exists(part)
+    keep = tmp_path / "paper_figures" / "fig18.png"
+    keep.write_bytes(b"png")
+    assert remove_partial_files(tmp_path / "paper_figures", tmp_path / "absent") == [tmp_path / "paper_figures" / os.path.basename(part)]
+    assert sorted(p.name for p in (tmp_path / "paper_figures").iterdir()) == ["fig18.png"]

@@ -35,7 +35,7 @@ def test_python_dash_m_runs_the_cli():
 
 
 def test_the_library_needs_no_workflow_package():
-    """`pip install roughcontact` (no extras) has no snakemake, matplotlib, pyyaml, jsonschema:
+    """`pip install .` (no extras) has no snakemake, matplotlib, pyyaml, jsonschema:
     the library and the CLI work with them absent (only roughcontact.paper, the reproduction,
     uses them). They are hidden by a meta-path finder, as if not installed."""
     code = (

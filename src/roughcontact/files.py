@@ -14,7 +14,10 @@ import tempfile
 from pathlib import Path
 from typing import Iterator
 
-__all__ = ["atomic_path"]
+__all__ = ["atomic_path", "remove_partial_files"]
+
+#: the temporaries of :func:`atomic_path`: ``.<name>.<random>.part`` next to the target
+_PART_PREFIX, _PART_SUFFIX = ".", ".part"
 
 
 def _umask() -> int:
@@ -37,7 +40,7 @@ def _atomic_target(path: Path) -> Path:
     would give (0666 minus the umask): ``tempfile.mkstemp`` creates 0600 files and
     ``os.replace`` keeps the mode, which would leave reports unreadable to other users."""
     path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".part", dir=path.parent)
+    fd, tmp = tempfile.mkstemp(prefix=f"{_PART_PREFIX}{path.name}.", suffix=_PART_SUFFIX, dir=path.parent)
     try:
         os.fchmod(fd, 0o666 & ~_umask())
     finally:
@@ -58,3 +61,21 @@ def atomic_path(path: str | os.PathLike) -> Iterator[Path]:
     finally:
         if tmp.exists():
             tmp.unlink()
+
+
+def remove_partial_files(*roots: str | os.PathLike) -> list[Path]:
+    """Remove the temporaries :func:`atomic_path` leaves under ``roots`` when its process dies
+    without running its cleanup (SIGKILL, the OOM killer, a power loss); return what was removed.
+
+    Only for directories no writer can be using at the time: the workflow calls it when a run
+    starts (``onstart``, under Snakemake's lock on the working directory), so that a run resumed
+    after a hard kill leaves no ``.fig18.pdf.*.part`` behind."""
+    removed = []
+    for root in map(Path, roots):
+        if not root.is_dir():
+            continue
+        for tmp in root.rglob(f"{_PART_PREFIX}*{_PART_SUFFIX}"):
+            if tmp.is_file() and tmp.name.startswith(_PART_PREFIX):
+                tmp.unlink(missing_ok=True)
+                removed.append(tmp)
+    return removed

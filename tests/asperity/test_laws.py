@@ -341,7 +341,7 @@ def test_74_equals_65_with_consistent_psi(moments):
 
 def test_plasticity_index_of_the_captions_and_closure():
     got = [asp.plasticity_index(SpectralMoments(m00, 8e-5, 8e-4, 1.04e-6, 1.04e-4), MAT) for m00 in (0.0625, 0.3125, 0.625)]
-    np.testing.assert_allclose(got, [0.88, 1.35, 1.61], atol=0.006)  # NOTES; yet Figs 5–8 prescribe ψ = 0.35/0.5
+    np.testing.assert_allclose(got, [0.88, 1.35, 1.61], atol=0.006)  # docs/independent-studies.md; yet Figs 5–8 prescribe ψ = 0.35/0.5
     for psi in (0.35, 0.5, 2.0):
         y = asp.yield_strength_for_plasticity_index(psi, TABLE1, E_STAR)
         assert asp.plasticity_index(TABLE1, asp.AsperityMaterial(E_STAR, y)) == pytest.approx(psi, rel=1e-14)

@@ -162,7 +162,7 @@ def test_elastoplastic_json_matches_library(capsys):
 
 def test_elastoplastic_yield_strength_gives_physical_psi(capsys):
     """--yield-strength: the material is physical and ψ an output (0.88 for the caption's
-    E* = 1.14e5, Y = 2070 N/mm² on the Table 1 surface, NOTES.md)."""
+    E* = 1.14e5, Y = 2070 N/mm² on the Table 1 surface, docs/independent-studies.md)."""
     d = run_json(capsys, *EP, "--yield-strength", "2070", "--s", "1", "--accuracy", "plot")
     assert d["closure"] == "material"
     assert d["psi"] == pytest.approx(0.88, abs=0.005)

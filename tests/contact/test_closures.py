@@ -17,7 +17,7 @@ SURFACES = {m00: SpectralMoments(m00, 8e-5, 8e-4, 1.04e-6, 1.04e-4) for m00 in (
 
 @pytest.mark.parametrize("m00, psi_expected", [(0.0625, 0.88), (0.3125, 1.35), (0.625, 1.61)])
 def test_material_closure_gives_the_captions_psi(m00, psi_expected):
-    """The captions' E*, Y already fix ψ (NOTES: 0.88, 1.35, 1.61, printed to two decimals),
+    """The captions' E*, Y already fix ψ (docs/independent-studies.md: 0.88, 1.35, 1.61, printed to two decimals),
     not the prescribed 0.35 / 0.5."""
     mat = resolve_material(SURFACES[m00], E_star=E_STAR, Y=Y_PRINTED)
     assert mat.Y == Y_PRINTED and mat.H == pytest.approx(Y_PRINTED / 0.354, rel=1e-15)

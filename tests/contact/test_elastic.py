@@ -44,7 +44,7 @@ def test_gw_columns_reproduce_within_printed_rounding(name, quantity):
 
 
 def test_table1_loads_with_the_papers_numerics():
-    """NOTES: (33) clipped + polynomials reproduce Table 1's anisotropic loads to ≈0.26 %,
+    """docs/independent-studies.md: (33) clipped + polynomials reproduce Table 1's anisotropic loads to ≈0.26 %,
     a constant ratio over all six cells; exact Hertz functions give 5.9–6.2 % more."""
     printed = np.array([float(v) for v in T1["columns"]["anisotropic"]["pressure"]])
     paper = elastic_contact(TABLE1, S1, E_STAR, hertz="paper").pressure / printed

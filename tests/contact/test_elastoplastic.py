@@ -232,7 +232,7 @@ def test_elastoplastic_load_below_elastic_load(psi):
 
 
 def test_high_psi_mean_real_pressure_tends_to_c_h_H():
-    """At high ψ almost every summit is fully plastic and W/(A H) → c_h = 0.967 (NOTES), not
+    """At high ψ almost every summit is fully plastic and W/(A H) → c_h = 0.967 (docs/independent-studies.md), not
     the prose's 0.354 (nor (2/3)K_Y Y/H = 0.382, the mean pressure at first yield). Measured
     at s = 0, 3, 6: ψ = 5: 0.8852, 0.7890, 0.7499; ψ = 20: 0.9659, 0.9624, 0.9612;
     ψ = 50: 0.96697, 0.96682, 0.96679; ψ = 500: 0.967 to 6 digits."""
@@ -275,7 +275,7 @@ def test_fig5_prose_matches_the_yielded_not_the_plastic_part():
 def test_figs7_8_elastoplastic_stiffness_at_equal_pressure():
     """Figs 7–8 (ψ = 0.35, 0.5, Y from ψ): K vs W/A0 for m00 = 0.0625, 0.3125, 0.625. At the
     same pressure the elasto-plastic stiffness is at most the elastic one, but the curves
-    nearly coincide (NOTES): measured K_ep/K_el ≥ 0.99996 (ψ = 0.35) and ≥ 0.9959 (ψ = 0.5,
+    nearly coincide (docs/independent-studies.md): measured K_ep/K_el ≥ 0.99996 (ψ = 0.35) and ≥ 0.9959 (ψ = 0.5,
     m00 = 0.0625, at W/A0 = 1000 N/mm²) — not the prose's "significant difference". (With
     the captions' E*, Y instead, ψ = 0.88, 1.35, 1.61, the ratio falls to 0.93 at 1000 N/mm².)
     The stiffness is smaller for rougher surfaces, as the prose says."""

@@ -240,7 +240,7 @@ def test_rigid_base_interface_normals_point_into_the_body(contact, family, norma
 
 @pytest.mark.parametrize("family, n, contact_points", [("quadratic", 4, 81), ("cubic", 3, 100)])
 def test_quarter_punch_contact_point_counts(family, n, contact_points):
-    """NOTES section 9: 81 = 9 × 9 nodes of 4 × 4 quadratic, 100 = 10 × 10 of 3 × 3 cubic."""
+    """docs/independent-studies.md, "Contact points": 81 = 9 × 9 nodes of 4 × 4 quadratic, 100 = 10 × 10 of 3 × 3 cubic."""
     punch = box(graded(0, 10, n), graded(0, 10, n), graded(0, 10, 3, 3.0), contact_face="bottom",
                 family=family)
     s = rigid_base_interface(punch).summary()

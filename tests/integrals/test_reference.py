@@ -322,7 +322,7 @@ def table1_loads():
 @pytest.mark.mpmath
 def test_table1_loads_paper_numerics(table1_loads):
     """With the paper's numerics ((33) clipped, (36)–(39)) every printed anisotropic load is
-    reproduced within 0.5 %, by a nearly constant ratio (NOTES: 0.26 %)."""
+    reproduced within 0.5 %, by a nearly constant ratio (docs/independent-studies.md: 0.26 %)."""
     ratio = table1_loads["paper"] / TABLE1_LOAD
     assert np.all(np.abs(ratio - 1) < 0.005), ratio
     assert np.ptp(ratio) < 0.001, ratio

@@ -108,8 +108,11 @@ def test_beam_agrees_with_the_engine(tmp_path):
 
 
 def test_skipped_scene_says_why():
-    md = calculix.render_markdown([], [], {}, "", skipped_reason="ccx is not installed here")
-    assert "**Skipped**: ccx is not installed here" in md and "calculix-ccx" in md
+    md = calculix.render_markdown([], [], {}, "", skipped_reason=calculix.skipped_line())
+    assert "skipped: ccx not installed — `apt-get install calculix-ccx`" in md
+    # the same install line as the gate's declaration of the optional scene
+    data = yaml.safe_load((Path(__file__).resolve().parents[2] / "config" / "expected_verdicts.yaml").read_text())
+    assert data["expected_checks"]["calculix"]["install"] == calculix.CCX_INSTALL
 
 
 def test_node_prints_stop_at_the_next_print():

@@ -218,8 +218,9 @@ def test_vanished_checks_fail_the_gate():
           _check("cell:fig/a/b/s=1", REPRODUCED)]
     ok = verify.apply_expectations(ok, {})
     cov = verify.check_coverage(ok, data, tools=())
-    assert cov == {"missing": [], "skipped": [{"scene": "calculix", "requires": "ccx"}], "unexpected": []}
-    assert verify.summarize(ok, cov)["passed"]
+    assert cov == {"missing": [], "skipped": [{"scene": "calculix", "requires": "ccx", "checks": 4, "install": ""}],
+                   "unexpected": []}
+    assert verify.summarize(ok, cov)["passed"] and verify.summarize(ok, cov)["skipped"] == 4
     # the tool is installed but its scene produced nothing: a regression
     cov = verify.check_coverage(ok, data, tools=["ccx"])
     assert cov["missing"] == [{"scene": "calculix", "expected": 4, "found": 0}]
@@ -321,5 +322,5 @@ def test_report_shows_missing_checks_and_off_band_reasons():
     summary = verify.summarize(off, cov)
     assert not summary["passed"] and summary["coverage"] == cov
     md = report.render_verification_markdown(off, summary=summary)
-    assert "**MISSING CHECKS** in `fig6`: 0 of 1" in md and "`calculix` skipped: needs `ccx`" in md
+    assert "**MISSING CHECKS** in `fig6`: 0 of 1" in md and "`calculix` skipped: ccx not installed" in md
     assert "LEFT ITS DOCUMENTED BAND" in md.split("## Regressions", 1)[1]

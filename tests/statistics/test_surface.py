@@ -85,7 +85,7 @@ def test_bandwidth_parameters_closed_forms():
 
 
 def test_summit_density_per_mm2_table1():
-    # NOTES: 1041 summits/mm² for Table 1's surface (lengths in µm → ×1e6 per mm²)
+    # docs/independent-studies.md: 1041 summits/mm² for Table 1's surface (lengths in µm → ×1e6 per mm²)
     assert TABLE1.summit_density * 1e6 == pytest.approx(1041.3, abs=0.05)
 
 

@@ -48,11 +48,13 @@ def _alternation(names):
 # restyling a figure or rewording a claim never re-runs the mpmath reference.
 #
 # A rule does not take the .py files themselves as inputs but their CODE FINGERPRINTS
-# (results/code/<module>.sha256, SHA-256 of the module's syntax tree without comments and
-# docstrings), rewritten here, when the workflow is parsed, only if the code changed: a
-# comment, a docstring or a reformatting changes no number and re-plans no job, and the
-# fingerprints travel with a copied results tree. All paths are relative to the workflow
-# directory (the working directory of every rule), so a copied checkout plans nothing new.
+# (results/code/<module>.<digest>.sha256, named by the SHA-256 of the module's syntax tree
+# without comments and docstrings): a comment, a docstring or a reformatting keeps the name and
+# re-plans no job; a code change gives a new name, which the jobs that use the module see as a
+# changed set of inputs. The files are written by the rule code_fingerprint, never while the
+# workflow is parsed, so a dry run (-n) writes nothing; they travel with a copied results tree.
+# All paths are relative to the workflow directory (the working directory of every rule), so a
+# copied checkout plans nothing new.
 LIB = REPO / "src" / "roughcontact"
 FINGERPRINTS = Path("results") / "code"
 
@@ -69,16 +71,17 @@ def _code_digest(path):
     return hashlib.sha256(ast.dump(tree, include_attributes=False).encode()).hexdigest()
 
 
+#: {fingerprint file name: the source file it stands for (relative to the workflow directory)}
+FINGERPRINTED = {}
+
+
 def code_fingerprint(path):
-    """The fingerprint file of one source file (relative to the workflow directory), rewritten
-    only when the code's digest changed, so that its mtime moves only then."""
+    """The fingerprint file of one source file (relative to the workflow directory): its name
+    carries the code's digest; rule code_fingerprint writes it. Nothing is written here."""
     rel = Path(path).resolve().relative_to(REPO)
-    stamp = FINGERPRINTS / (str(rel).replace("/", "__") + ".sha256")
-    digest = _code_digest(REPO / rel) + "\n"
-    if not (REPO / stamp).exists() or (REPO / stamp).read_text() != digest:
-        (REPO / stamp).parent.mkdir(parents=True, exist_ok=True)
-        (REPO / stamp).write_text(digest)
-    return str(stamp)
+    name = f"{str(rel).replace('/', '__')}.{_code_digest(REPO / rel)[:16]}.sha256"
+    FINGERPRINTED[name] = rel
+    return str(FINGERPRINTS / name)
 
 
 def library_sources(*parts):
@@ -266,3 +269,33 @@ def fe_punch_paths(names):
             if name in names:
                 out[name] = f"results/fe/punch/{group}/{name[len(group) + 1:]}.nc"
     return out
+
+
+rule code_fingerprint:
+    """The code fingerprint of one source file (see code_fingerprint): written once per version
+    of its code, by a job, so that a dry run writes nothing; the fingerprints of the file's
+    earlier versions are removed (no job reads them any more). A shell job: a `run:` job would
+    start a whole Snakemake process (~15 s) per file."""
+    output:
+        f"{FINGERPRINTS}/{{fingerprint}}",
+    log:
+        "logs/code/{fingerprint}.log",
+    wildcard_constraints:
+        fingerprint=r"[^/]+\.py\.[0-9a-f]{16}\.sha256",
+    params:
+        source=lambda w: str(FINGERPRINTED[w.fingerprint]),
+        digest=lambda w: _code_digest(REPO / FINGERPRINTED[w.fingerprint]),
+        earlier=lambda w: w.fingerprint[: -len("0123456789abcdef.sha256")] + "????????????????.sha256",
+    localrule: True
+    shell:
+        "find {FINGERPRINTS} -maxdepth 1 -name '{params.earlier}' ! -name '{wildcards.fingerprint}' -delete"
+        " && echo {params.digest} > {output} && echo '{params.source}: {params.digest}' > {log}"
+
+
+onstart:
+    # a run resumed after a hard kill: the killed jobs' half-written temporaries go (the lock on
+    # this directory guarantees that no job is writing now); dry runs do not call onstart
+    from roughcontact.files import remove_partial_files
+
+    for _part in remove_partial_files("results", "paper_figures", "logs"):
+        print(f"removed the temporary of a killed job: {_part}", file=sys.stderr)

@@ -1,7 +1,10 @@
 """The exported table checked in CalculiX (rule fe_calculix): the block, the beam, and one deck in
 both codes (a block on a base, refined); paper_figures/calculix.md/.csv and
-results/verify/calculix.checks.csv. An optional scene: without ccx it writes no checks and says
-why (VERIFICATION.md then reports it as skipped)."""
+results/verify/calculix.checks.csv. An optional scene: without ccx it writes every declared
+output all the same — no checks, the work directory holding only a note of why — and
+VERIFICATION.md, the gate and the gallery report it as skipped."""
+
+from pathlib import Path
 
 from roughcontact import io
 from roughcontact.paper import calculix, calculix_deck, report, verify
@@ -11,8 +14,12 @@ def run(cfg, beam_cfg, paths, workdir, out, log):
     with io.log_to(log) as logger:
         exe = calculix.ccx_executable()
         if exe is None:
-            logger.info("ccx not found on PATH: the CalculiX scene is skipped")
-            io.write_text(out["md"], calculix.render_markdown([], [], {}, "", skipped_reason="ccx is not installed here"))
+            why = calculix.skipped_line()
+            logger.info("ccx not found on PATH: %s", why)
+            # every declared output, also the directory(): Snakemake fails a job that lacks one
+            Path(workdir).mkdir(parents=True, exist_ok=True)
+            io.write_text(Path(workdir) / "SKIPPED.txt", why.replace("`", "") + "\n")
+            io.write_text(out["md"], calculix.render_markdown([], [], {}, "", skipped_reason=why))
             io.write_text(out["csv"], "")
             io.write_text(out["checks"], verify.checks_to_csv([]))
             return

@@ -11,7 +11,7 @@ from roughcontact import io
 from roughcontact.paper import gallery
 
 
-def run(entries_path, checks_dir, geometry_dir, output, log):
+def run(entries_path, checks_dir, geometry_dir, summary_path, output, log):
     with io.log_to(log) as logger:
         entries = yaml.safe_load(Path(entries_path).read_text())["figures"]
         checks, verdicts = {}, {}
@@ -32,9 +32,11 @@ def run(entries_path, checks_dir, geometry_dir, output, log):
                 verdicts[name] = ("none", "— (a drawing; no numerical claim)")
             logger.info("%s: %s", name, verdicts[name][1])
         prov = f"roughcontact {io.provenance_attrs(timestamp=False)['roughcontact_version']}, commit {io.git_commit()[:12]}"
-        io.write_text(output, gallery.render(entries, checks, verdicts, prov))
+        summary = json.loads(Path(summary_path).read_text())
+        io.write_text(output, gallery.render(entries, checks, verdicts, prov, summary=summary,
+                                             report="VERIFICATION.html"))
 
 
 if "snakemake" in globals():
     sm = snakemake  # noqa: F821
-    run(sm.input.entries, "results/verify", "results/geometry", sm.output[0], sm.log[0])
+    run(sm.input.entries, "results/verify", "results/geometry", sm.input.summary, sm.output[0], sm.log[0])

@@ -1,12 +1,14 @@
 """The verdict gate of `snakemake verify`: print the summary; fail on any regression
 (a check expected "reproduced" in config/expected_verdicts.yaml that is not, a documented
-discrepancy outside its band, a scene with fewer checks than expected_checks declares)."""
+discrepancy outside its band, a scene with fewer checks than expected_checks declares) and on
+any check improved beyond its documented expectation (unexplained until the file says why)."""
 
 import json
 import sys
 from pathlib import Path
 
 from roughcontact import io
+from roughcontact.paper import verify
 
 
 def message(summary):
@@ -24,12 +26,13 @@ def message(summary):
         )
     coverage = summary.get("coverage") or {}
     lines += [f"  MISSING CHECKS {m['scene']}: {m['found']} of {m['expected']} declared" for m in coverage.get("missing", [])]
-    lines += [f"  skipped {m['scene']}: {m['requires']} not run" if m["requires"].startswith("target ")
-              else f"  skipped {m['scene']}: needs {m['requires']}, not installed" for m in coverage.get("skipped", [])]
+    lines += [f"  {m['scene']} ({m.get('checks', '?')} checks) {verify.skipped_text(m['requires'], m.get('install', ''))}"
+              for m in coverage.get("skipped", [])]
     lines += [f"  more checks than declared in {m['scene']}: {m['found']} of {m['expected']} (update expected_checks)"
               for m in coverage.get("unexpected", [])]
     lines += [f"  REGRESSION {i}" for i in summary["regression_ids"]]
-    lines += [f"  improved (update config/expected_verdicts.yaml): {i}" for i in summary["improved_ids"]]
+    lines += [f"  IMPROVED beyond expectation (update config/expected_verdicts.yaml with the reason): {i}"
+              for i in summary["improved_ids"]]
     lines.append("  report: paper_figures/VERIFICATION.md")
     return "\n".join(lines)
 
@@ -42,7 +45,8 @@ def run(summary_path, output, log):
         logger.info("\n%s", text)
         if not summary["passed"]:
             missing = len((summary.get("coverage") or {}).get("missing", []))
-            raise SystemExit(f"{summary['regressions']} verification regression(s), {missing} scene(s) missing "
+            raise SystemExit(f"{summary['regressions']} verification regression(s), {summary['improved']} check(s) "
+                             f"improved beyond their documented expectation, {missing} scene(s) missing "
                              f"checks, {summary['checks']} checks: see paper_figures/VERIFICATION.md")
         io.write_text(output, text + "\n")
 

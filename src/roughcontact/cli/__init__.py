@@ -35,7 +35,9 @@ Files a command writes (export -o, moments --save-rotated, fe --vtu) are options
 (atomically, under exactly the name given).
 
 Exit codes: 0 success; 2 bad input (one line on stderr, "roughcontact: error: ...");
-1 a computed value is not finite. Any other exception is a bug and propagates (traceback).
+1 a computed value is not finite; 141 (128 + SIGPIPE, as ``cat`` or ``seq`` give) when the
+reader of the output went away (``roughcontact ... | head -1``): no message, no traceback. Any
+other exception is a bug and propagates (traceback).
 The library's warnings (results outside the model's range of validity) are printed as one
 line each, "roughcontact: warning: ...", and do not change the exit code.
 
@@ -95,7 +97,7 @@ SURFACE_UNITS = {
 }
 
 # Choices of roughcontact.contact.elastic_contact, repeated here so that building the parser
-# does not import numba (tests/test_cli.py checks they match contact.MODELS/HERTZ/METHODS).
+# does not import numba (tests/cli/test_contact_commands.py checks they match contact.elastic.MODELS/HERTZ/METHODS).
 MODELS = ("bgk", "gw")
 HERTZ = ("exact", "paper")
 METHODS = ("production", "reference")
@@ -303,8 +305,30 @@ def _check_finite(payload: Any, path: str = "") -> None:
 # ---------------------------------------------------------------------------------------
 # entry point
 # ---------------------------------------------------------------------------------------
+#: the exit code when the reader of stdout went away: 128 + SIGPIPE, what a shell reports for a
+#: writer killed by SIGPIPE (``seq 1 100000 | head -1`` under ``set -o pipefail``), so a script
+#: sees that the output was cut off, as for any other Unix tool
+EXIT_BROKEN_PIPE = 141
+
+
 def main(argv: Sequence[str] | None = None) -> int:
-    """Run the CLI on ``argv`` (default ``sys.argv[1:]``); return the exit code."""
+    """Run the CLI on ``argv`` (default ``sys.argv[1:]``); return the exit code. A closed
+    output pipe ends the command quietly with :data:`EXIT_BROKEN_PIPE`."""
+    try:
+        code = _main(argv)
+        sys.stdout.flush()  # inside the try: a reader gone away shows up here or in print
+        return code
+    except BrokenPipeError:
+        # Python's documented recipe (library/signal, "Note on SIGPIPE"): point stdout at
+        # devnull so that the interpreter's final flush at exit raises nothing either
+        try:
+            os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        except (OSError, ValueError):  # stdout has no descriptor (e.g. replaced in tests)
+            pass
+        return EXIT_BROKEN_PIPE
+
+
+def _main(argv: Sequence[str] | None) -> int:
     parser = build_parser()
     try:
         args = parser.parse_args(argv)

@@ -44,7 +44,7 @@ STATUS_NAMES = ("stick", "slip", "open")
 #: "incremental" is the (93) form with k_T at the end of the increment
 TANGENTIAL_FORMS = {"incremental": "incremental-end", "incremental-start": "incremental-start", "secant": "secant"}
 #: fe beam warns when its discretisation error estimate exceeds this share of the centre
-#: deflection (the convergence band of config fe.beam.study.convergence)
+#: deflection (the convergence band of config.yaml fe.beam.study.convergence)
 MESH_RTOL = 0.01
 
 

@@ -208,12 +208,12 @@ def _material_constants(material: AsperityMaterial):
 
 
 # ---------------------------------------------------------------------------------------
-# θ-node data (as contact._theta_nodes, plus f3 and the critical interference)
+# θ-node data (as contact.elastic._theta_nodes, plus f3 and the critical interference)
 # ---------------------------------------------------------------------------------------
 @functools.lru_cache(maxsize=64)
 def _theta_nodes(surface: SpectralMoments, hertz: str, accuracy, material: AsperityMaterial):
     """θ-weights (× cos θ sin θ) and per-node g, c, f1, f2, f3, tc1 (the same nodes as
-    contact._theta_nodes). tc1 = ω_c(θ, κ_m = c(θ))/√(m00 μ) by asperity.critical_interference."""
+    contact.elastic._theta_nodes). tc1 = ω_c(θ, κ_m = c(θ))/√(m00 μ) by asperity.critical_interference."""
     settings = elastoplastic_settings_for(accuracy)
     geom = PolarGeometry(surface)
     theta, w = theta_rule(geom.theta_breaks(hertz), settings)

@@ -21,7 +21,7 @@ __all__ = ["beam_run", "beam_runs", "beam_groups", "punch_run", "punch_groups", 
 
 
 def beam_run(cfg: Mapping[str, Any], family: str, case: str) -> BeamRun:
-    """The main run of Table 4 case ``case`` with ``family`` elements (cfg: config fe.beam)."""
+    """The main run of Table 4 case ``case`` with ``family`` elements (cfg: config.yaml fe.beam)."""
     c = cfg["cases"][case]
     return BeamRun(spec=BeamSpec(elements=family, **cfg["spec"]), m00=c["m00"], law=c["law"],
                    psi=cfg["psi"] if c["law"] == "elastoplastic" else None, E_star=cfg["E_star"],
@@ -68,7 +68,7 @@ _SPEC_FIELDS = {"load", "load_on", "seating_pressure", "increments", "unload_inc
 
 
 def punch_run(cfg: Mapping[str, Any], family: str, case: str, *overrides: Mapping[str, Any]) -> PunchRun:
-    """One run of example 9.2 (cfg: config fe.punch): its main reading with ``overrides``
+    """One run of example 9.2 (cfg: config.yaml fe.punch): its main reading with ``overrides``
     applied in turn (run fields, spec fields and ``geometry``)."""
     main = dict(cfg["main"])
     geometry = {"family": family, **main.pop("geometry", {})}

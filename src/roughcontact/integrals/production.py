@@ -54,7 +54,7 @@ def _moment_table() -> np.ndarray:
 def gaussian_moments(a) -> np.ndarray:
     """J_ν(a) = E[(Z + a)₊^ν] for ν = 0, 1/2, 1, 3/2 (columns), Z ~ N(0, 1), from the
     Chebyshev tables of normal_moments.py: ≤ 7e-16 relative for every a (measured against
-    mpmath, tests/test_normal_moments.py); exactly 0 below a ≈ −38.6, where J_ν < φ(a)
+    mpmath, tests/integrals/test_normal_moments.py); exactly 0 below a ≈ −38.6, where J_ν < φ(a)
     underflows."""
     a = np.ascontiguousarray(np.atleast_1d(np.asarray(a, dtype=float)))
     if not np.all(np.isfinite(a)):

@@ -50,7 +50,7 @@ readings of the elastic (trial) tangential traction, n the last converged state:
   7-9 % of the peak in tests/interface/test_tangential_forms.py).
 
 For a constant k_T the three coincide (bit for bit: the kernel writes the secant trial as
-t_n (K_T/K_T,n) + K_T Δu_T, and K_T/K_T,n = 1 exactly). Why it matters (NOTES.md, "Punch (9.2)";
+t_n (K_T/K_T,n) + K_T Δu_T, and K_T/K_T,n = 1 exactly). Why it matters (docs/independent-studies.md, "The punch";
 docs/errata.md D3): under the incremental law with 1000 N on the whole punch nothing slips (the
 largest |t_T|/(μ p) is 0.98, 0.78, 0.89 in cases a, b, c on the 21-node mesh), while the secant
 (total) reading lets it slip; and with k_T frozen at the start the tangential forces reverse on

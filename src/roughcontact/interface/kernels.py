@@ -5,7 +5,7 @@ the algorithm and the errata are in :mod:`.friction`'s docstring, which is the P
 
 Plain loops, ``njit(cache=True)``, no fastmath. The friction kernels call
 :func:`closure_law`, so both live in this one file (numba's on-disk cache is invalidated only
-when a kernel's own file changes; tests/interface/test_kernels.py checks that no kernel calls
+when a kernel's own file changes; tests/test_layout.py checks that no kernel calls
 a kernel of another file). Slow twins: :mod:`.reference`.
 
 State layout (one row per integration point; the friction module re-exports the names)

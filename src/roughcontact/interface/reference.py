@@ -185,7 +185,7 @@ def _complex_jacobian(fun, x, h=1e-30):
 def _ref_stiffness(k_N, k_Tx, k_Ty):
     """u_N -> (p_N, k_N, k_Tx, k_Ty) for the twin, complex-step capable, valid for a closed
     contact: the constant law (p = k_N u_N) or the tabulated one
-    (interface.reference_closure_law, k_T = a k_N)."""
+    (interface.reference.reference_closure_law, k_T = a k_N)."""
     if isinstance(k_N, InterfaceLaw):
         tab, h_ref, (ax, ay) = k_N.kernel_data()
 

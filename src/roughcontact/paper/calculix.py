@@ -39,10 +39,12 @@ import numpy as np
 from ..examples.beam import BeamSpec
 from ..fe.mesh import graded
 
-__all__ = ["ccx_executable", "ccx_version", "run_ccx", "block_deck", "beam_deck", "node_prints",
+__all__ = ["CCX_INSTALL", "ccx_executable", "ccx_version", "skipped_line", "run_ccx", "block_deck", "beam_deck", "node_prints",
            "block_closures_um", "beam_deflections_um", "engine_deflections_um",
            "width_and_half_element_average"]
 
+#: how to get ccx where it is missing (Debian/Ubuntu); the gate's expected_checks says the same
+CCX_INSTALL = "apt-get install calculix-ccx"
 _BLOCK_E, _BLOCK_NU = 2.1e5, 0.3  # N/mm²: a steel cube (its own compression is not measured)
 _BASE_E = 1.0e12  # N/mm²: the base's compression is 1e-12 of the pressure per mm
 
@@ -50,6 +52,14 @@ _BASE_E = 1.0e12  # N/mm²: the base's compression is 1e-12 of the pressure per 
 def ccx_executable() -> str | None:
     """The path of ``ccx`` on PATH, or None."""
     return shutil.which("ccx")
+
+
+def skipped_line() -> str:
+    """Why the scene did not run where ccx is absent: "skipped: ccx not installed — `apt-get
+    install calculix-ccx`" (the wording of every report, :func:`roughcontact.paper.verify.skipped_text`)."""
+    from .verify import skipped_text
+
+    return skipped_text("ccx", CCX_INSTALL)
 
 
 def ccx_version(exe: str) -> str:
@@ -66,7 +76,7 @@ def run_ccx(deck: str, name: str, workdir, *, exe: str | None = None, timeout: f
 
     exe = exe or ccx_executable()
     if exe is None:
-        raise RuntimeError("ccx is not installed (Debian/Ubuntu: apt-get install calculix-ccx)")
+        raise RuntimeError(f"ccx is not installed (Debian/Ubuntu: {CCX_INSTALL})")
     workdir = Path(workdir)
     workdir.mkdir(parents=True, exist_ok=True)
     (workdir / f"{name}.inp").write_text(deck)
@@ -402,7 +412,7 @@ def _table_for(surface, E_star, p0, cfg):
 def run_scene(cfg, beam_cfg, engine_points, workdir, *, exe=None, progress=print):
     """Run the block and the beams in ccx and compare: returns (rows, checks, timings).
 
-    cfg: config ``calculix``; beam_cfg: config ``fe.beam`` (surface, E_star, spec, cases);
+    cfg: config.yaml ``calculix``; beam_cfg: config.yaml ``fe.beam`` (surface, E_star, spec, cases);
     engine_points: {case: (point_x, point_y, point_u_N_um)} of the engine's runs of ``cfg.family``;
     workdir: where the decks and ccx's files go (kept: the decks are complete examples)."""
     from ..statistics import SpectralMoments
@@ -455,11 +465,12 @@ def run_scene(cfg, beam_cfg, engine_points, workdir, *, exe=None, progress=print
 
 
 def render_markdown(rows, checks, timings, version: str, skipped_reason: str = "") -> str:
-    """paper_figures/calculix.md: what was run, the comparisons, the ccx times; or why skipped."""
+    """paper_figures/calculix.md: what was run, the comparisons, the ccx times; or, with
+    ``skipped_reason`` (e.g. :func:`skipped_line`), why it was skipped and how to run it."""
     lines = ["# The exported table in CalculiX (issue 14)", ""]
     if skipped_reason:
-        return "\n".join(lines + [f"**Skipped**: {skipped_reason}. Install CalculiX (`apt-get install calculix-ccx`) "
-                                  "and rerun `snakemake fe_calculix` to run this check.", ""])
+        return "\n".join(lines + [f"This scene was {skipped_reason}. With CalculiX installed, "
+                                  "`snakemake fe_calculix` (or `make verify`) runs this scene's checks.", ""])
     lines += [f"CalculiX {version}; decks and outputs in `results/calculix/` (block.inp, beam-<case>.inp). "
               "Tables exported by `roughcontact.interface.export` (format calculix, mm, N/mm²), node-to-surface contact.", "",
               "## Block on a rigid base under uniform pressure", "",

@@ -113,7 +113,7 @@ def table5_checks(data: Mapping[str, Any], runs: Mapping[str, Any], cfg: Mapping
 
 
 def slip_panel(ds) -> dict[str, np.ndarray]:
-    """One panel of Figs 18/19 (plots.punch_slips): the points' x, y [mm], plastic slips ux, uy
+    """One panel of Figs 18/19 (paper.plots.punch_slips): the points' x, y [mm], plastic slips ux, uy
     [µm] and status at the maximum load."""
     return {"x": ds["x"].values, "y": ds["y"].values, "ux": _at_max(ds, "slip_x_um"),
             "uy": _at_max(ds, "slip_y_um"), "status": _at_max(ds, "status")}

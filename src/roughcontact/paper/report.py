@@ -25,6 +25,7 @@ from .verify import (
     format_tolerance,
     improvements,
     regressions,
+    skipped_text,
     summarize,
 )
 
@@ -45,8 +46,8 @@ def _coverage_lines(coverage: Mapping[str, Any]) -> list[str]:
     """The check-count comparison with expected_checks (verify.check_coverage), as bullets."""
     lines = [f"- **MISSING CHECKS** in `{m['scene']}`: {m['found']} of {m['expected']} (regression)"
              for m in coverage.get("missing", [])]
-    lines += [f"- `{m['scene']}` skipped: needs `{m['requires']}`, not installed here"
-              for m in coverage.get("skipped", [])]
+    lines += [f"- `{m['scene']}`" + (f" ({m['checks']} checks)" if m.get("checks") else "")
+              + f" {skipped_text(m['requires'], m.get('install', ''))}" for m in coverage.get("skipped", [])]
     lines += [f"- `{m['scene']}`: {m['found']} checks, {m['expected']} declared (update expected_checks)"
               for m in coverage.get("unexpected", [])]
     return lines + [""] if lines else []
@@ -243,7 +244,9 @@ def render_verification_markdown(
         "(tolerances and their reasons: `config/config.yaml`); expected verdicts and documented "
         "reasons: `config/expected_verdicts.yaml`. CI fails on a *regression*: expected "
         "reproduced (or within a documented residual) and now not, a documented discrepancy "
-        "that left its band (sign and size), or a scene with fewer checks than declared.",
+        "that left its band (sign and size), a check *improved* beyond its documented expectation "
+        "(a change nobody has explained, until the expectation is updated with the reason), or a "
+        "scene with fewer checks than declared.",
         "",
         "## Summary",
         "",
@@ -251,7 +254,9 @@ def render_verification_markdown(
         f"{summary['reproduced']} reproduced, {summary['not_reproduced']} not reproduced "
         f"({summary['known']} documented, {summary['regressions']} regressions); "
         f"{summary.get('within_residual', 0)} within a documented residual; "
-        f"{summary['improved']} improved beyond expectation.",
+        f"{summary['improved']} improved beyond expectation"
+        + (" (unexplained: they fail the gate)" if summary['improved'] else "")
+        + (f"; {summary['skipped']} skipped (an optional tool not installed or a target of its own not run)." if summary.get("skipped") else "."),
         "",
         *_coverage_lines(summary.get("coverage") or {}),
         "| scene | kind | checks | reproduced | within a documented residual | not reproduced | documented "
@@ -275,7 +280,8 @@ def render_verification_markdown(
         lines.append("")
     imps = improvements(checks)
     if imps:
-        lines += ["## Improved (update config/expected_verdicts.yaml)", ""]
+        lines += ["## Improved beyond expectation (fails the gate until config/expected_verdicts.yaml "
+                  "records the new expectation and its reason)", ""]
         lines += [f"- `{c.id}`: {md_escape(c.detail)}" for c in imps]
         lines.append("")
 

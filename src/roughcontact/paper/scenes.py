@@ -252,8 +252,8 @@ def fig18_paths(cases: Sequence[str], k_N: float, p_N: float, *, angle_deg: floa
                 "path": ("path", ["direct", "swapped"], {"long_name": "slip path: direct, or x and y exchanged"}),
                 "step": ("step", np.arange(incr.shape[1]), {"units": "1", "long_name": "load step"})},
     )
-    ds["u_x"] = (("path", "step"), paths[:, 1:, 0], {"units": length_unit})
-    ds["u_y"] = (("path", "step"), paths[:, 1:, 1], {"units": length_unit})
+    ds["u_x"] = (("path", "step"), paths[:, 1:, 0], {"units": length_unit, "long_name": "imposed tangential displacement u_x"})
+    ds["u_y"] = (("path", "step"), paths[:, 1:, 1], {"units": length_unit, "long_name": "imposed tangential displacement u_y"})
     ds["loading"] = ("step", np.arange(incr.shape[1]) < steps, {"units": "1", "long_name": "True while u grows"})
     ds.attrs.update(k_N=k_N, p_N=p_N, angle_deg=angle_deg, u_max=u_max)
     return ds

@@ -30,7 +30,7 @@ q_x^p q_y^q (Parseval): exact for a periodic band-limited map (``window="none"``
 m20; m00 is Hann-weighted).
 
 Scale and uncertainty: m20 … m04 depend on the sampling interval (for a fractal-like spectrum they
-grow without bound as it falls; contact.engineering shows them as functions of scale), so the
+grow without bound as it falls; https://contact.engineering shows them as functions of scale), so the
 moments are also given at 2× and 4× the interval (the same stencils at spacing 2h, 4h, from every
 point); their standard uncertainty is the batch-means estimate over 4 × 4 sub-windows (the
 derivative fields' products summed per sub-window about the global means: the spread of those

@@ -8,7 +8,7 @@ Run against that commit's source, e.g.
     git archive 6539136 src | tar -x -C /tmp/base
     PYTHONPATH=/tmp/base/src .venv/bin/python tests/examples/data/capture_6539136.py
 
-It imports roughcontact.fe.beam / fe.punch, which no longer exist after that commit: this file
+It imports the modules fe/beam.py and fe/punch.py of that commit, which no longer exist after that commit: this file
 is provenance, not a test (pytest does not collect it).
 """
 
