@@ -31,15 +31,15 @@ separately as ``stiffness_jump``), so ``stiffness`` is −dW/dh in both cases.
 
 Integrators
 -----------
-``method="production"``: numba (integrals.kernels._ep_pairs): θ-nodes of the elastic integrator
-(split at the axis turn θ*, the peak of g and the kinks of the Hertz option) carrying f1, f2,
-f3, c, g, tc1; r on the partition of the elastic kernel plus the r where t_c and t_p cross
-the bulk of the t-mass (and r_c/2, 2 r_c), Gauss–Legendre on each piece. Per r-node the
-t-integral is closed-form where the Gaussian window of φ(t − a), a = r g − l, lies in one
-regime (elastic: J_{1/2}, J_1, J_{3/2}(a); plastic: J_0, J_1), otherwise the elastic piece
-[lo, t_c] (in √t) and the elasto-plastic piece [t_c, t_p] (in ln t near 0) are integrated by
-Gauss–Legendre and the plastic tail beyond t_p is closed-form (levels:
-integrals.rules.ELASTOPLASTIC_PRESETS). Parallel over (s, θ-node) pairs.
+``method="production"``: numba (integrals.kernels, the τ = r t route, docs/performance.md). In
+τ = r t the regime boundaries are τ = t_c1 and (ω_p/ω_c) t_c1 and the law depends on τ alone
+(times powers of r), so every column is ∫ F(τ) G_k(τ) dτ with G_k(τ) the summit measure on the
+hyperbola r t = τ, which depends on θ only through g(θ). Per separation G_k is computed once
+on a grid (Chebyshev nodes in g over the θ-nodes' range × panels in ln τ; trapezoidal rule in
+ln r) and ln G_k interpolated; each θ-node then integrates its regime pieces in ln τ
+(Gauss–Legendre) with the law evaluated there only. θ: nested tanh-sinh levels, added until the
+estimated θ-error is below the preset's tolerance (integrals.rules.ELASTOPLASTIC_PRESETS).
+Separations run in parallel; a single one splits its grid and θ-nodes over the threads.
 ``method="reference"``: the slow twin
 (:func:`roughcontact.integrals.reference_elastoplastic.reference_integrals`) — scipy
 ``integrate.cubature`` (adaptive Gauss–Kronrod 21) over θ (polynomially mapped to flatten
@@ -61,7 +61,7 @@ from ..asperity import AsperityMaterial, critical_interference, ellipse, plastic
 from ..integrals.polar import PolarGeometry
 from ..integrals.production import polar_elastoplastic_integrals
 from ..integrals.reference_elastoplastic import reference_integrals
-from ..integrals.rules import elastoplastic_settings_for, theta_rule
+from ..integrals.rules import elastoplastic_settings_for, nested_theta_rule
 from ..statistics.surface import SpectralMoments
 from ..validation import choice, instance, separations
 from .validity import VALIDITY_MODES, check_bandwidth, check_validity
@@ -212,36 +212,39 @@ def _material_constants(material: AsperityMaterial):
 # ---------------------------------------------------------------------------------------
 @functools.lru_cache(maxsize=64)
 def _theta_nodes(surface: SpectralMoments, hertz: str, accuracy, material: AsperityMaterial):
-    """θ-weights (× cos θ sin θ) and per-node g, c, f1, f2, f3, tc1 (the same nodes as
-    contact._theta_nodes). tc1 = ω_c(θ, κ_m = c(θ))/√(m00 μ) by asperity.critical_interference."""
+    """Per-θ-node g, c, f1, f2, f3, tc1 on the nested θ-rules of the accuracy's levels (split at
+    the axis turn θ*, the peak of g and the Hertz kinks; ordered by level), with ``counts`` and
+    ``weights`` (θ-weight × cos θ sin θ per level): integrals.rules.nested_theta_rule.
+    tc1 = ω_c(θ, κ_m = c(θ))/√(m00 μ) by asperity.critical_interference."""
     settings = elastoplastic_settings_for(accuracy)
     geom = PolarGeometry(surface)
-    theta, w = theta_rule(geom.theta_breaks(hertz), settings)
+    theta, counts, w = nested_theta_rule(geom.theta_breaks(hertz), settings.theta_levels)
     lam = np.sqrt(geom.lambda_squared(theta))
     factors = ellipse.hertz_factors(lam, hertz)
     c = geom.c(theta)
     sigma = math.sqrt(surface.m00 * surface.mu)
     wc1 = np.asarray(critical_interference(c, factors, material, hertz=hertz), dtype=float)  # eq. (65)
-    nodes = dict(
+    return dict(
         g=geom.g(theta),
         c=c,
         f1=np.asarray(factors.f1, float),
         f2=np.asarray(factors.f2, float),
         f3=np.asarray(factors.f3, float),
         tc1=wc1 / sigma,
+        counts=counts,
+        weights=w * (np.cos(theta) * np.sin(theta))[None, :],
     )
-    return w * np.cos(theta) * np.sin(theta), nodes
 
 
-def _production(surface, l_values, material, hertz, accuracy) -> np.ndarray:
+def _production(surface, l_values, material, hertz, accuracy, return_info=False):
     """Columns A^e, A^ep, A^p, W^e, W^ep, W^p, K, K_jump per unit nominal area."""
-    w_theta, nodes = _theta_nodes(surface, hertz, accuracy, material)
+    nodes = _theta_nodes(surface, hertz, accuracy, material)
     sigma = math.sqrt(surface.m00 * surface.mu)
-    per_node = polar_elastoplastic_integrals(l_values, nodes, sigma, _material_constants(material), accuracy)
-    tot = np.einsum("ijq,j->iq", per_node, w_theta) * surface.summit_density
-    out = tot.copy()
-    out[:, 6] = tot[:, 6] + tot[:, 7]  # K = ∫ dW_i/dω p_sum + jump term
-    return out
+    tot, info = polar_elastoplastic_integrals(l_values, nodes, sigma, _material_constants(material), accuracy,
+                                              return_info=True)
+    out = tot * surface.summit_density
+    out[:, 6] = out[:, 6] + out[:, 7]  # K = ∫ dW_i/dω p_sum + jump term
+    return (out, info) if return_info else out
 
 
 #: the column groups whose sum is each production column's total (s_interpolation's
