@@ -149,9 +149,8 @@ def test_adaptive_theta_level_keeps_its_estimate(psi):
 
 
 def test_threads_and_serial_give_the_same_numbers():
-    """Many separations run one per thread, a few with each separation's grid and θ-nodes split
-    over the threads, one thread serially: the same numbers to the last bit (the grid sizes
-    and θ-levels do not depend on who computes them)."""
+    """Separations split over the threads, one at a time, one thread for all: the same numbers
+    to the last bit (the grid sizes and θ-levels do not depend on who computes them)."""
     import numba
 
     mat = _material(1.0)

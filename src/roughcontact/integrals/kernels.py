@@ -1187,14 +1187,15 @@ def _grid_ng_start(g_lo, g_hi, tol):
 
 
 @numba.njit(cache=True)
-def _ep_grid_panels(l, g_lo, g_hi, s_c_min, d, width, tol, h0, cw, shift, edges, degree, vals, info):
+def _ep_grid_panels(l, g_lo, g_hi, d, width, tol, h0, cw, shift, edges, degree, vals, info):
     """The s-panels of the grid for one separation (_grid_panels on [s_lo, s_hi]: from ln τ of
-    the ellipse e^{−40} down to 10 below the bulk of the mass and the smallest t_c1).
+    the ellipse e^{−40} down to 10 below the bulk of the mass; below, the small-τ model — the
+    grid depends on the surface and l only, not on the material, so materials share it).
     Returns P; info[1] = 0 if the panels' tolerance was not reached."""
     t_hi = max(_ellipse_tau_max(g_hi, l, TAIL), _ellipse_tau_max(g_lo, l, TAIL))
     s_hi = math.log(t_hi)
     s_mass = math.log(_tau_of_mass(0.5 * (g_lo + g_hi), l))
-    s_lo = min(s_mass, s_c_min) - _GRID_BELOW
+    s_lo = s_mass - _GRID_BELOW
     s_lo = min(max(s_lo, s_hi - 40.0), s_hi - 8.0)
     P, ok = _grid_panels(l, g_hi, g_lo, s_lo, s_mass - 4.0, s_hi, width, d, tol, h0, cw, shift, edges, degree, vals,
                          info)
@@ -1227,13 +1228,13 @@ def _ep_grid_next(ng, vals, P, d, degree, tol, info):
 
 
 @numba.njit(cache=True)
-def _ep_grid(l, g_lo, g_hi, s_c_min, d, width, tol, h0, cw, shift, yt, wt, jt, edges, degree, vals, coef,
+def _ep_grid(l, g_lo, g_hi, d, width, tol, h0, cw, shift, yt, wt, jt, edges, degree, vals, coef,
              tot_coef, info):
     """The grid of ln G_k for one separation (serial): panels in s, then g-nodes doubled
     (nested Lobatto: 4, 8, 16, 32 intervals) until the g-coefficients converge; coefficients
     and totals. Returns (P, ng); info[0] += hyperbola integrals computed; info[1] = 0 if a
     tolerance was not reached (panels or g)."""
-    P = _ep_grid_panels(l, g_lo, g_hi, s_c_min, d, width, tol, h0, cw, shift, edges, degree, vals, info)
+    P = _ep_grid_panels(l, g_lo, g_hi, d, width, tol, h0, cw, shift, edges, degree, vals, info)
     ng = _grid_ng_start(g_lo, g_hi, tol)
     rows = np.empty(_GRID_MAX_NG + 1, dtype=np.int64)
     first = True
@@ -1253,7 +1254,7 @@ def _ep_grid(l, g_lo, g_hi, s_c_min, d, width, tol, h0, cw, shift, yt, wt, jt, e
 
 
 @numba.njit(cache=True)
-def _ep_grid_values(l, g_lo, g_hi, s_c_min, d, width, tol, h0, cw, yt, wt, jt, tau, g, out, info):
+def _ep_grid_values(l, g_lo, g_hi, d, width, tol, h0, cw, yt, wt, jt, tau, g, out, info):
     """Build one separation's grid and evaluate ln G_0, ln G_1 from it at (τ[i], g[i]) (inside
     the g-range; below the grid by the model of _below_params); out[i] = (ln G_0, ln G_1).
     info = (hyperbola integrals computed, grid converged, panels, g-intervals, s at the grid's
@@ -1265,7 +1266,7 @@ def _ep_grid_values(l, g_lo, g_hi, s_c_min, d, width, tol, h0, cw, yt, wt, jt, t
     tot_coef = np.empty((4, _GRID_MAX_NG + 1))
     info[0] = 0.0
     info[1] = 1.0
-    P, ng = _ep_grid(l, g_lo, g_hi, s_c_min, d, width, tol, h0, cw, 0.0, yt, wt, jt, edges, degree, vals, coef,
+    P, ng = _ep_grid(l, g_lo, g_hi, d, width, tol, h0, cw, 0.0, yt, wt, jt, edges, degree, vals, coef,
                      tot_coef, info)
     info[2] = P
     info[3] = ng
@@ -1337,7 +1338,7 @@ def _ep_level_sum(m, n_levels, w_levels, node, cur, prev, e_prev):
 @numba.njit(cache=True)
 def _ep_nodes(js, l, g, c, f1, f2, f3, tc1, sigma, E_star, ratio, cH, dp, pv, with_jump, g_lo, g_hi, ng, edges,
               degree, P, d, coef, tot_coef, yt, wt, jt, shift, node):
-    """node[j] = _ep_node at the θ-nodes j in ``js``."""
+    """node[j] = _ep_node at the θ-nodes j in ``js`` (one material)."""
     ln_r = math.log(ratio)
     cg = np.empty((P, d + 1, 2))
     cs = np.empty(max(d, ng) + 1)
@@ -1351,124 +1352,69 @@ def _ep_nodes(js, l, g, c, f1, f2, f3, tc1, sigma, E_star, ratio, cH, dp, pv, wi
 
 
 @numba.njit(cache=True)
+def _ep_materials_done(shift, cur, est, m_used, n_levels, out, info):
+    """out[k] = cur[k]·e^{−shift} and info[k, 2:] for every material k."""
+    scale = math.exp(-shift)
+    for k in range(cur.shape[0]):
+        for q in range(8):
+            out[k, q] = cur[k, q] * scale
+        info[k, 2] = m_used[k]
+        info[k, 3] = est[k] if n_levels.shape[0] > 1 else math.nan
+
+
+@numba.njit(cache=True)
 def _ep_separation(l, g, c, f1, f2, f3, tc1, w_levels, n_levels, sigma, E_star, ratio, cH, dp, pv, with_jump,
                    d, width, tol, h0, cw, theta_tol, yt, wt, jt, work_vals, work_coef, out, info):
-    """out[0:8] = the θ-sums at one separation (serial); info = (hyperbola integrals computed,
-    1 if the grid reached its tolerance, θ-level index used, estimated θ-error).
+    """out[k, 0:8] = the θ-sums at one separation for each material k (serial); info[k] =
+    (hyperbola integrals computed, 1 if the grid reached its tolerance, θ-level index used,
+    estimated θ-error). tc1[k] and the constants E_star[k], ratio[k], cH[k], dp[k], pv[k],
+    with_jump[k] are the material's; the grid of the hyperbola integrals is the surface's and
+    the separation's, built once for all materials.
 
     θ-nodes are ordered by the tanh-sinh level they first appear in; n_levels[m] of them make
     level m, whose weights are w_levels[m] (× cos θ sin θ). Levels are added until the estimate
     e_m·min(1, e_m/e_{m−1}) ≤ theta_tol, e_m = the change from level m − 1 (tanh-sinh levels
     nest: the coarser sum costs nothing); with one level only, that one."""
+    n_mat = tc1.shape[0]
     n_all = n_levels[n_levels.shape[0] - 1]
     g_lo = g.min()
     g_hi = g.max()
     edges = np.empty(_GRID_MAX_PANELS + 1)
     degree = np.empty(_GRID_MAX_PANELS, dtype=np.int64)
     tot_coef = np.empty((4, _GRID_MAX_NG + 1))
-    info[0] = 0.0
-    info[1] = 1.0
+    grid_info = np.zeros(2)
+    grid_info[1] = 1.0
     shift = 0.5 * l * l / (1.0 + g_hi * g_hi) if l > 0.0 else 0.0  # ln G ≤ −shift + O(1): scaled out
-    if shift > _UNDERFLOW_SHIFT:  # every column underflows: exactly 0
-        out[:] = 0.0
-        info[2] = 0.0
-        info[3] = math.nan
-        return
-    P, ng = _ep_grid(l, g_lo, g_hi, math.log(tc1.min()), d, width, tol, h0, cw, shift, yt, wt, jt, edges, degree,
-                     work_vals, work_coef, tot_coef, info)
-    node = np.empty((n_all, 8))
-    prev = np.zeros(8)
-    cur = np.zeros(8)
-    e_prev = math.inf
-    est = math.inf
-    done = 0
-    m = 0
-    for m in range(n_levels.shape[0]):
-        _ep_nodes(np.arange(done, n_levels[m]), l, g, c, f1, f2, f3, tc1, sigma, E_star, ratio, cH, dp, pv,
-                  with_jump, g_lo, g_hi, ng, edges, degree, P, d, work_coef, tot_coef, yt, wt, jt, shift, node)
-        done = n_levels[m]
-        est, e_prev = _ep_level_sum(m, n_levels, w_levels, node, cur, prev, e_prev)
-        if est <= theta_tol:
-            break
-    scale = math.exp(-shift)
-    for q in range(8):
-        out[q] = cur[q] * scale
-    info[2] = m
-    info[3] = est if n_levels.shape[0] > 1 else math.nan
-
-
-@numba.njit(cache=True, parallel=True)
-def _ep_separation_threads(n_blocks, l, g, c, f1, f2, f3, tc1, w_levels, n_levels, sigma, E_star, ratio, cH, dp,
-                           pv, with_jump, d, width, tol, h0, cw, theta_tol, yt, wt, jt, out, info):
-    """_ep_separation with the grid's g-rows and the θ-nodes of each level split over
-    ``n_blocks`` threads (a single separation: milliseconds of work)."""
-    n_all = n_levels[n_levels.shape[0] - 1]
-    g_lo = g.min()
-    g_hi = g.max()
-    vals = np.empty((_GRID_MAX_NG + 1, _GRID_MAX_PANELS, d + 1, 2))
-    coef = np.empty((_GRID_MAX_NG + 1, _GRID_MAX_PANELS, d + 1, 2))
-    edges = np.empty(_GRID_MAX_PANELS + 1)
-    degree = np.empty(_GRID_MAX_PANELS, dtype=np.int64)
-    tot_coef = np.empty((4, _GRID_MAX_NG + 1))
-    info[0] = 0.0
-    info[1] = 1.0
-    shift = 0.5 * l * l / (1.0 + g_hi * g_hi) if l > 0.0 else 0.0  # ln G ≤ −shift + O(1): scaled out
-    if shift > _UNDERFLOW_SHIFT:  # every column underflows: exactly 0
-        out[:] = 0.0
-        info[2] = 0.0
-        info[3] = math.nan
-        return
-    P = _ep_grid_panels(l, g_lo, g_hi, math.log(tc1.min()), d, width, tol, h0, cw, shift, edges, degree, vals, info)
-    ng = _grid_ng_start(g_lo, g_hi, tol)
-    rows = np.empty(_GRID_MAX_NG + 1, dtype=np.int64)
-    first = True
-    while True:
-        n_rows = _ep_grid_rows(ng, first, rows)
-        first = False
-        stride = _GRID_MAX_NG // ng
-        for b in numba.prange(n_blocks):
-            _grid_fill(l, g_lo, g_hi, rows[b:n_rows:n_blocks], stride, edges, degree, P, d, h0, cw, shift, vals)
-        for p in range(P):
-            info[0] += n_rows * (degree[p] + 1)
-        nxt = _ep_grid_next(ng, vals, P, d, degree, tol, info)
-        if nxt == 0:
-            break
-        ng = nxt
-    _grid_coefficients(l, g_lo, g_hi, vals, ng, _GRID_MAX_NG // ng, P, d, degree, edges, yt, wt, jt, shift, coef,
-                       tot_coef)
-    node = np.empty((n_all, 8))
-    prev = np.zeros(8)
-    cur = np.zeros(8)
-    e_prev = math.inf
-    est = math.inf
-    done = 0
-    m = 0
-    # the nodes of the first three levels in one parallel region (a region costs a thread
-    # wake-up; most separations stop at the third), then one level per region; the sums and
-    # the stopping rule are the serial ones, so the numbers do not depend on the threads
-    first_batch = min(2, n_levels.shape[0] - 1)
-    for m in range(n_levels.shape[0]):
-        if m == 0 or m > first_batch:
-            top = n_levels[first_batch] if m == 0 else n_levels[m]
-            for b in numba.prange(n_blocks):
-                _ep_nodes(np.arange(done + b, top, n_blocks), l, g, c, f1, f2, f3, tc1, sigma, E_star, ratio,
-                          cH, dp, pv, with_jump, g_lo, g_hi, ng, edges, degree, P, d, coef, tot_coef, yt, wt, jt,
-                          shift, node)
-            done = top
-        est, e_prev = _ep_level_sum(m, n_levels, w_levels, node, cur, prev, e_prev)
-        if est <= theta_tol:
-            break
-    scale = math.exp(-shift)
-    for q in range(8):
-        out[q] = cur[q] * scale
-    info[2] = m
-    info[3] = est if n_levels.shape[0] > 1 else math.nan
+    cur = np.zeros((n_mat, 8))
+    est = np.full(n_mat, math.inf)
+    m_used = np.zeros(n_mat, dtype=np.int64)
+    if shift <= _UNDERFLOW_SHIFT:  # else every column underflows: exactly 0
+        P, ng = _ep_grid(l, g_lo, g_hi, d, width, tol, h0, cw, shift, yt, wt, jt, edges, degree, work_vals,
+                         work_coef, tot_coef, grid_info)
+        node = np.empty((n_all, 8))
+        prev = np.zeros(8)
+        for k in range(n_mat):
+            e_prev = math.inf
+            done = 0
+            for m in range(n_levels.shape[0]):
+                _ep_nodes(np.arange(done, n_levels[m]), l, g, c, f1, f2, f3, tc1[k], sigma, E_star[k], ratio[k],
+                          cH[k], dp[k], pv[k], with_jump[k], g_lo, g_hi, ng, edges, degree, P, d, work_coef,
+                          tot_coef, yt, wt, jt, shift, node)
+                done = n_levels[m]
+                est[k], e_prev = _ep_level_sum(m, n_levels, w_levels, node, cur[k], prev, e_prev)
+                m_used[k] = m
+                if est[k] <= theta_tol:
+                    break
+    for k in range(n_mat):
+        info[k, 0] = grid_info[0]
+        info[k, 1] = grid_info[1]
+    _ep_materials_done(shift, cur, est, m_used, n_levels, out, info)
 
 
 @numba.njit(cache=True)
 def _ep_rows(rows, l_values, g, c, f1, f2, f3, tc1, w_levels, n_levels, sigma, E_star, ratio, cH, dp, pv,
              with_jump, d, width, tol, h0, cw, theta_tol, yt, wt, jt, out, info):
-    """_ep_separation for the separations in ``rows`` (one work grid reused)."""
+    """_ep_separation for the separations in ``rows`` (one work grid reused); out[i, k, :]."""
     work_vals = np.empty((_GRID_MAX_NG + 1, _GRID_MAX_PANELS, d + 1, 2))
     work_coef = np.empty((_GRID_MAX_NG + 1, _GRID_MAX_PANELS, d + 1, 2))
     for i in rows:

@@ -22,7 +22,6 @@ from .kernels import (
     _elastic_rows_parallel,
     _ep_rows,
     _ep_rows_parallel,
-    _ep_separation_threads,
     _ep_grid_values,
     _hyperbola_at_zero_array,
     _hyperbola_moments_array,
@@ -162,7 +161,7 @@ def hyperbola_moments_at_zero(g, l) -> np.ndarray:
     return out
 
 
-def hyperbola_grid_values(l, g_range, tau, g, accuracy="table", s_c_min=math.inf):
+def hyperbola_grid_values(l, g_range, tau, g, accuracy="table"):
     """ln G_0, ln G_1 at (τ, g) from the interpolation grid the elasto-plastic kernel builds for
     one separation l over ``g_range`` = (g_lo, g_hi) (below the grid: its small-τ model); and
     the grid's info (hyperbola integrals computed, converged, panels, g-intervals, ln τ where the
@@ -173,45 +172,56 @@ def hyperbola_grid_values(l, g_range, tau, g, accuracy="table", s_c_min=math.inf
     tau, g = (np.array(a.reshape(-1)) for a in np.broadcast_arrays(np.asarray(tau, float), np.asarray(g, float)))
     out = np.empty((tau.shape[0], 2))
     info = np.empty(5)
-    _ep_grid_values(float(l), float(g_range[0]), float(g_range[1]), float(min(s_c_min, 700.0)), int(st.panel_degree),
+    _ep_grid_values(float(l), float(g_range[0]), float(g_range[1]), int(st.panel_degree),
                     float(st.panel_width), float(st.grid_tol), float(st.hyperbola_step),
                     float(st.hyperbola_width_fraction), y_t, w_t, _moment_table(), tau, g, out, info)
     return out, info
 
 
 def polar_elastoplastic_integrals(l_values, nodes, sigma, material_constants, accuracy="table",
-                                  *, return_info=False):
+                                  *, tc1=None, return_info=False):
     """The θ-summed (r, t)-integrals of the elasto-plastic laws at each l; shape (n_l, 8):
     A^e, A^ep, A^p, W^e, W^ep, W^p, dW/dω, load-jump term (elastoplastic.py applies D_sum and
     adds the jump to the stiffness).
 
-    ``nodes``: dict of per-θ-node arrays g, c, f1, f2, f3, tc1 (tc1 = ω_c(θ, κ_m = c(θ))/σ),
+    ``nodes``: dict of per-θ-node arrays g, c, f1, f2, f3 and tc1 (tc1 = ω_c(θ, κ_m = c(θ))/σ),
     ordered by tanh-sinh level, with ``counts`` (nodes of each level) and ``weights`` (one row per
     level: θ-weight × cos θ sin θ), as rules.nested_theta_rule makes them;
     ``material_constants``: (E*, ω_p/ω_c, c_h H, H (c_h − (2/3) K_v), (2/3) K_v H, with_jump).
-    ``return_info``: also an (n_l, 4) array: hyperbola integrals computed, 1 if the grid reached
-    its tolerance (else 0), the θ-level used (index into the levels), the estimated θ-error."""
+    Several materials on one surface: ``material_constants`` a list of such tuples and ``tc1``
+    their (n_materials, n_nodes) array; the result is then (n_l, n_materials, 8), and the
+    hyperbola integrals — the surface's, not the material's — are computed once per l.
+    ``return_info``: also (…, 4): hyperbola integrals computed, 1 if the grid reached its
+    tolerance (else 0), the θ-level used (index into the levels), the estimated θ-error."""
     l_values = np.ascontiguousarray(np.atleast_1d(np.asarray(l_values, dtype=float)))
     if not np.all(np.isfinite(l_values)):
         raise ValueError("separations must be finite")
+    single = tc1 is None
+    consts = [material_constants] if single else list(material_constants)
+    tc1 = np.ascontiguousarray(np.atleast_2d(nodes["tc1"] if single else tc1), dtype=float)
+    if tc1.shape != (len(consts), np.shape(nodes["g"])[0]):
+        raise ValueError(f"tc1 must have shape (materials, θ-nodes) = {(len(consts), np.shape(nodes['g'])[0])}")
     st = elastoplastic_settings_for(accuracy)
     y_t, w_t = gauss_legendre(st.tau_nodes)
-    arr = {k: np.ascontiguousarray(nodes[k], dtype=float) for k in ("g", "c", "f1", "f2", "f3", "tc1")}
+    arr = {k: np.ascontiguousarray(nodes[k], dtype=float) for k in ("g", "c", "f1", "f2", "f3")}
     counts = np.ascontiguousarray(nodes["counts"], dtype=np.int64)
     weights = np.ascontiguousarray(nodes["weights"], dtype=float)
-    E_star, ratio, cH, dp, pv, with_jump = material_constants
-    out = np.empty((l_values.shape[0], 8))
-    info = np.empty((l_values.shape[0], 4))
-    args = (l_values, arr["g"], arr["c"], arr["f1"], arr["f2"], arr["f3"], arr["tc1"], weights, counts,
-            float(sigma), float(E_star), float(ratio), float(cH), float(dp), float(pv), bool(with_jump),
-            int(st.panel_degree), float(st.panel_width), float(st.grid_tol), float(st.hyperbola_step),
-            float(st.hyperbola_width_fraction), float(st.theta_tol), y_t, w_t, _moment_table(), out, info)
-    threads = numba.get_num_threads()
-    if threads > 1 and l_values.shape[0] >= threads:
+    columns = [np.ascontiguousarray([float(m[q]) for m in consts]) for q in range(5)]
+    with_jump = np.array([bool(m[5]) for m in consts])
+    out = np.empty((l_values.shape[0], len(consts), 8))
+    info = np.empty((l_values.shape[0], len(consts), 4))
+    args = (l_values, arr["g"], arr["c"], arr["f1"], arr["f2"], arr["f3"], tc1, weights, counts, float(sigma),
+            *columns, with_jump, int(st.panel_degree), float(st.panel_width), float(st.grid_tol),
+            float(st.hyperbola_step), float(st.hyperbola_width_fraction), float(st.theta_tol), y_t, w_t,
+            _moment_table(), out, info)
+    # separations over the threads in one parallel region; a single separation runs serially
+    # (splitting its few milliseconds costs parallel regions, each a thread wake-up: measured
+    # slower than serial on the shared 2-core machine, and the elastic single call is serial too)
+    threads = min(numba.get_num_threads(), l_values.shape[0])
+    if threads > 1:
         _ep_rows_parallel(threads, *args)
-    elif threads > 1:  # fewer separations than threads: each one's grid and θ-nodes split
-        for i in range(l_values.shape[0]):
-            _ep_separation_threads(threads, l_values[i], *args[1:-2], out[i], info[i])
     else:
         _ep_rows(np.arange(l_values.shape[0]), *args)
+    if single:
+        out, info = out[:, 0], info[:, 0]
     return (out, info) if return_info else out
