@@ -34,8 +34,10 @@ $(PY):
 	@$(PYTHON) -c 'import sys; sys.exit(0 if sys.version_info >= (3, 11) else "error: Python >= 3.11 needed, found " + sys.version.split()[0])'
 	$(PYTHON) -m venv $(VENV)
 
-$(STAMP): pyproject.toml | $(PY)
-	$(PY) -m pip install --quiet --editable '.[workflow,test,docs,cluster]'
+# uv (a wheel, installed into the venv by pip) with pip's registry configuration, else pip
+# (tools/install_env.py; INSTALLER=pip forces pip)
+$(STAMP): pyproject.toml tools/install_env.py | $(PY)
+	$(PY) tools/install_env.py --python $(PY) --spec '.[workflow,test,docs,cluster]'
 	@touch $@
 
 venv: $(STAMP)
