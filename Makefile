@@ -3,7 +3,7 @@
 #   make reproduce   create .venv (if missing), install, run the whole Snakemake workflow
 #   make test        create .venv (if missing), install, run the test suite (fast tier, < 3 min)
 #
-# Other targets: test-slow (the slow tier: mpmath references, workflow runs; CI runs it), test-all,
+# Other targets: test-slow (the slow tier: mpmath references, workflow runs; CI runs it), test-all, test-slurm,
 # bench (speed against error, full mode), bench-fe (FE linear solvers), verify (verification report and verdict gate only),
 # docs (API reference, Sphinx, warnings are errors), dry-run, ci (.ci/run), clean (generated results),
 # distclean (+ .venv).
@@ -24,7 +24,7 @@ SNAKEMAKE := $(BIN)/snakemake --workflow-profile workflow/profiles/default --cor
 # need no re-install).
 STAMP  := $(VENV)/.installed
 
-.PHONY: help venv reproduce bench bench-fe test test-slow test-all verify docs dry-run ci clean distclean
+.PHONY: help venv reproduce bench bench-fe test test-slow test-all test-slurm verify docs dry-run ci clean distclean
 
 help:
 	@sed -n '3,9p' Makefile
@@ -66,6 +66,11 @@ test-slow: $(STAMP)
 
 test-all: $(STAMP)
 	$(PY) -m pytest -n $(WORKERS) -m ""
+
+# the SLURM tier: a one-node cluster (munged, slurmctld, slurmd as root) started by the test;
+# skips with one line where it cannot start (docs/sweeps.rst)
+test-slurm: $(STAMP)
+	$(PY) -m pytest -n 0 -m slurm tests/test_slurm.py
 
 verify: $(STAMP)
 	$(SNAKEMAKE) verify
