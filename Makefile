@@ -3,7 +3,7 @@
 #   make reproduce   create .venv (if missing), install, run the whole Snakemake workflow
 #   make test        create .venv (if missing), install, run the test suite (fast tier, < 3 min)
 #
-# Other targets: test-slow (the slow tier: mpmath references, workflow runs; CI runs it), test-all,
+# Other targets: test-slow (the slow tier: mpmath references, workflow runs; CI runs it), test-all, test-slurm,
 # bench (speed against error, full mode), bench-fe (FE: block-on-base deck vs CalculiX, linear solvers), verify (verification report and verdict gate only),
 # docs (API reference, Sphinx, warnings are errors), dry-run, ci (.ci/run), clean (generated results),
 # distclean (+ .venv).
@@ -32,7 +32,7 @@ MAKE_START := $(shell date +%s)
 VENV_EXISTED := $(wildcard $(PY))
 LOAD_START := $(shell cut -d' ' -f1-3 /proc/loadavg 2>/dev/null)
 
-.PHONY: help venv reproduce bench bench-fe test test-slow test-all verify docs dry-run ci clean distclean
+.PHONY: help venv reproduce bench bench-fe test test-slow test-all test-slurm verify docs dry-run ci clean distclean
 
 help:
 	@sed -n '3,9p' Makefile
@@ -42,8 +42,10 @@ $(PY):
 	@$(PYTHON) -c 'import sys; sys.exit(0 if sys.version_info >= (3, 11) else "error: Python >= 3.11 needed, found " + sys.version.split()[0])'
 	$(PYTHON) -m venv $(VENV) || { rm -rf $(VENV); echo "error: '$(PYTHON) -m venv' failed (Debian/Ubuntu: apt-get install python3-venv, or python3.11-venv)" >&2; exit 1; }
 
-$(STAMP): pyproject.toml | $(PY)
-	$(PY) -m pip install --quiet --editable '.[workflow,test,docs,cluster,measure,bem]' || { echo "error: pip could not install roughcontact into $(VENV) with Python $$($(PY) -c 'import platform; print(platform.python_version())') (tested: 3.11, 3.12, 3.13); pip's message is above" >&2; exit 1; }
+# uv (a wheel, installed into the venv by pip) with pip's registry configuration, else pip
+# (tools/install_env.py; INSTALLER=pip forces pip)
+$(STAMP): pyproject.toml tools/install_env.py | $(PY)
+	$(PY) tools/install_env.py --python $(PY) --spec '.[workflow,test,docs,cluster,measure,bem]' || { echo "error: could not install roughcontact into $(VENV) with Python $$($(PY) -c 'import platform; print(platform.python_version())') (tested: 3.11, 3.12, 3.13); the installer's message is above" >&2; exit 1; }
 	@$(PY) workflow/scripts/record_wall_time.py setup --make-start $(MAKE_START) \
 	    --created $(if $(VENV_EXISTED),no,yes) --load-start "$(LOAD_START)" --out $(VENV)/.setup.json
 	@touch $@
@@ -78,6 +80,11 @@ test-slow: $(STAMP)
 
 test-all: $(STAMP)
 	$(PY) -m pytest -n $(WORKERS) -m ""
+
+# the SLURM tier: a one-node cluster (munged, slurmctld, slurmd as root) started by the test;
+# skips with one line where it cannot start (docs/sweeps.rst)
+test-slurm: $(STAMP)
+	$(PY) -m pytest -n 0 -m slurm tests/test_slurm.py
 
 verify: $(STAMP)
 	$(SNAKEMAKE) verify

@@ -237,8 +237,8 @@ def test_readme_gives_the_commands_make_runs():
     readme = (ROOT / "README.md").read_text()
     makefile = (ROOT / "Makefile").read_text()
     section = readme.split("## Without make", 1)[1].split("\n## ", 1)[0]
-    install = next(line.strip() for line in makefile.splitlines() if "pip install" in line).split(" || ")[0]
-    extras = install.split("--editable ", 1)[1]
+    install = next(line.strip() for line in makefile.splitlines() if "tools/install_env.py --python" in line)
+    extras = install.split("--spec ", 1)[1].split()[0]  # what tools/install_env.py installs (uv, else pip)
     assert f"pip install --editable {extras}" in section
     assert "snakemake --workflow-profile workflow/profiles/default --cores all all" in section
     assert "--workflow-profile workflow/profiles/default" in makefile and "-m pytest -n $(WORKERS)" in makefile

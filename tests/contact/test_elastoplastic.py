@@ -331,3 +331,21 @@ def test_dataset_carries_units_material_and_psi():
     assert ds["plastic_pressure"].attrs["units"] == "N/mm^2" and ds["stiffness_jump"].attrs["units"] == "N/mm^2/um"
     assert ds.attrs["psi"] == pytest.approx(0.35) and ds.attrs["m00"] == 0.0625
     assert ds.attrs["K_v"] == pytest.approx(0.354 * 1.62) and ds.attrs["Y"] == mat.Y
+
+
+def test_many_materials_are_the_single_calls():
+    """elastoplastic_contact_many shares the surface's hyperbola integrals between materials;
+    each material's curves are those of its own call to the last bit (the grid does not depend
+    on the material, the θ-levels are chosen per material), also through the s-interpolation."""
+    from roughcontact.contact import elastoplastic_contact_many
+
+    mats = [material(psi) for psi in (0.35, 5.0, 50.0)]
+    for s in (np.array([0.0, 1.0, 3.0]), np.linspace(-0.5, 4.0, 60)):
+        many = elastoplastic_contact_many(FIG, s, mats, accuracy="plot", validity="off")
+        for mat, got in zip(mats, many):
+            one = elastoplastic_contact(FIG, s, mat, accuracy="plot", validity="off")
+            for f in ElastoPlasticCurves.FIELDS:
+                np.testing.assert_array_equal(getattr(got, f), getattr(one, f), err_msg=f)
+            assert got.interpolation == one.interpolation
+    with pytest.raises(ValueError, match="at least one material"):
+        elastoplastic_contact_many(FIG, [0.0], [])

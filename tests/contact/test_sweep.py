@@ -111,3 +111,40 @@ def test_a_sweep_takes_its_moments_from_a_moments_file(tmp_path):
     assert spec.fixed["m40"] == pytest.approx(1.04e-6) and spec.fixed["m20"] == 8e-5 and "m00" not in spec.fixed
     with pytest.raises(ValueError, match="both in fixed and in the moments file"):
         spec_from_config({**cfg, "fixed": {"E_star": 1.14e5, "m20": 1e-4}})
+
+
+def test_axis_interpolated_within_its_measured_bound():
+    """An axis (here m00 over a factor 2) with ≥ AXIS_MIN_POINTS values comes from a Chebyshev
+    interpolant in ln m00 checked at the midpoints of its nodes; the error measured there is in
+    the attributes, within the axis tolerance, and the interpolated sweep agrees with every
+    value computed directly to the "plot" bound (1e-8 relative to each field's total)."""
+    from roughcontact.contact.sweep import AXIS_MIN_POINTS, AXIS_RTOL
+
+    axes = {"m00": np.geomspace(0.0625, 0.125, AXIS_MIN_POINTS + 3), "psi": [1.0]}
+    s = [0.0, 1.0, 2.5]
+    interp = run_sweep(spec(axes=axes, s=s, with_elastic=False, interpolate_axes=("m00", "psi")))
+    direct = run_sweep(spec(axes=axes, s=s, with_elastic=False))
+    assert interp.attrs["m00_interpolation"] == "chebyshev"
+    assert 0.0 < interp.attrs["m00_interpolation_error"] <= interp.attrs["m00_interpolation_rtol"] == AXIS_RTOL["plot"]
+    assert interp.attrs["m00_interpolation_nodes"] < axes["m00"].size  # fewer model evaluations than values
+    assert "m00_interpolation" not in direct.attrs and "psi_interpolation" not in interp.attrs  # off by default
+    for total, parts in (("area_fraction", ("elastic_area_fraction", "plastic_area_fraction")),
+                         ("pressure", ("elastoplastic_pressure",)), ("stiffness", ())):
+        scale = np.abs(direct[total].values)
+        for f in (total, *parts):
+            err = np.abs(interp[f].values - direct[f].values) / scale
+            assert np.nanmax(err) <= 1e-8, (f, np.nanmax(err))
+    np.testing.assert_array_equal(interp["material_psi"].values, direct["material_psi"].values)
+
+
+def test_axis_that_does_not_verify_is_computed_directly():
+    """ψ over 0.2 … 5 (steep at the yield onset) fails the midpoint check on every grid cheaper
+    than its 20 values: every value is computed, the same numbers as without interpolation,
+    and the attributes say so."""
+    axes = {"m00": [0.0625], "psi": np.geomspace(0.2, 5.0, 20)}
+    s = [0.0, 2.5]
+    interp = run_sweep(spec(axes=axes, s=s, with_elastic=False, interpolate_axes=("psi",)))
+    direct = run_sweep(spec(axes=axes, s=s, with_elastic=False))
+    assert interp.attrs["psi_interpolation"] == "direct" and np.isnan(interp.attrs["psi_interpolation_error"])
+    for v in direct.data_vars:
+        np.testing.assert_array_equal(interp[v].values, direct[v].values, err_msg=v)

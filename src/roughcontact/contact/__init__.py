@@ -13,11 +13,12 @@ from . import closures, sweep
 from .at_pressure import ContactAtPressure, contact_at_pressure
 from .closures import CLOSURES, default_closure, resolve_material
 from .elastic import ContactCurves, bearing_area, bearing_area_ratio, elastic_contact
-from .elastoplastic import ElastoPlasticCurves, elastoplastic_contact
+from .elastoplastic import ElastoPlasticCurves, elastoplastic_contact, elastoplastic_contact_many
 
 __all__ = [
     "elastic_contact", "ContactCurves", "bearing_area", "bearing_area_ratio",
-    "elastoplastic_contact", "ElastoPlasticCurves", "contact_at_pressure", "ContactAtPressure",
+    "elastoplastic_contact", "elastoplastic_contact_many", "ElastoPlasticCurves", "contact_at_pressure",
+    "ContactAtPressure",
     "resolve_material", "default_closure", "CLOSURES",
     "closures", "sweep",
 ]

@@ -31,15 +31,15 @@ separately as ``stiffness_jump``), so ``stiffness`` is −dW/dh in both cases.
 
 Integrators
 -----------
-``method="production"``: numba (integrals.kernels._ep_pairs): θ-nodes of the elastic integrator
-(split at the axis turn θ*, the peak of g and the kinks of the Hertz option) carrying f1, f2,
-f3, c, g, tc1; r on the partition of the elastic kernel plus the r where t_c and t_p cross
-the bulk of the t-mass (and r_c/2, 2 r_c), Gauss–Legendre on each piece. Per r-node the
-t-integral is closed-form where the Gaussian window of φ(t − a), a = r g − l, lies in one
-regime (elastic: J_{1/2}, J_1, J_{3/2}(a); plastic: J_0, J_1), otherwise the elastic piece
-[lo, t_c] (in √t) and the elasto-plastic piece [t_c, t_p] (in ln t near 0) are integrated by
-Gauss–Legendre and the plastic tail beyond t_p is closed-form (levels:
-integrals.rules.ELASTOPLASTIC_PRESETS). Parallel over (s, θ-node) pairs.
+``method="production"``: numba (integrals.kernels, the τ = r t route, docs/performance.md). In
+τ = r t the regime boundaries are τ = t_c1 and (ω_p/ω_c) t_c1 and the law depends on τ alone
+(times powers of r), so every column is ∫ F(τ) G_k(τ) dτ with G_k(τ) the summit measure on the
+hyperbola r t = τ, which depends on θ only through g(θ). Per separation G_k is computed once
+on a grid (Chebyshev nodes in g over the θ-nodes' range × panels in ln τ; trapezoidal rule in
+ln r) and ln G_k interpolated; each θ-node then integrates its regime pieces in ln τ
+(Gauss–Legendre) with the law evaluated there only. θ: nested tanh-sinh levels, added until the
+estimated θ-error is below the preset's tolerance (integrals.rules.ELASTOPLASTIC_PRESETS).
+Separations run in parallel; a single one splits its grid and θ-nodes over the threads.
 ``method="reference"``: the slow twin
 (:func:`roughcontact.integrals.reference_elastoplastic.reference_integrals`) — scipy
 ``integrate.cubature`` (adaptive Gauss–Kronrod 21) over θ (polynomially mapped to flatten
@@ -61,14 +61,14 @@ from ..asperity import AsperityMaterial, critical_interference, ellipse, plastic
 from ..integrals.polar import PolarGeometry
 from ..integrals.production import polar_elastoplastic_integrals
 from ..integrals.reference_elastoplastic import reference_integrals
-from ..integrals.rules import elastoplastic_settings_for, theta_rule
+from ..integrals.rules import elastoplastic_settings_for, nested_theta_rule
 from ..statistics.surface import SpectralMoments
 from ..validation import choice, instance, separations
 from .validity import VALIDITY_MODES, check_bandwidth, check_validity
 from .units import attrs, check_units
-from .s_interpolation import SInterpolation, interpolated_columns
+from .s_interpolation import SInterpolation, interpolated_columns_many
 
-__all__ = ["ElastoPlasticCurves", "elastoplastic_contact"]
+__all__ = ["ElastoPlasticCurves", "elastoplastic_contact", "elastoplastic_contact_many"]
 
 HERTZ = ("exact", "paper")
 METHODS = ("production", "reference")
@@ -211,37 +211,57 @@ def _material_constants(material: AsperityMaterial):
 # θ-node data (as contact.elastic._theta_nodes, plus f3 and the critical interference)
 # ---------------------------------------------------------------------------------------
 @functools.lru_cache(maxsize=64)
-def _theta_nodes(surface: SpectralMoments, hertz: str, accuracy, material: AsperityMaterial):
-    """θ-weights (× cos θ sin θ) and per-node g, c, f1, f2, f3, tc1 (the same nodes as
-    contact.elastic._theta_nodes). tc1 = ω_c(θ, κ_m = c(θ))/√(m00 μ) by asperity.critical_interference."""
+def _theta_geometry(surface: SpectralMoments, hertz: str, accuracy):
+    """Per-θ-node g, c, f1, f2, f3 and the Hertz factors on the nested θ-rules of the accuracy's
+    levels (split at the axis turn θ*, the peak of g and the Hertz kinks; ordered by level),
+    with ``counts`` and ``weights`` (θ-weight × cos θ sin θ per level):
+    integrals.rules.nested_theta_rule. Material-free: shared by every material of a surface."""
     settings = elastoplastic_settings_for(accuracy)
     geom = PolarGeometry(surface)
-    theta, w = theta_rule(geom.theta_breaks(hertz), settings)
+    theta, counts, w = nested_theta_rule(geom.theta_breaks(hertz), settings.theta_levels)
     lam = np.sqrt(geom.lambda_squared(theta))
     factors = ellipse.hertz_factors(lam, hertz)
-    c = geom.c(theta)
-    sigma = math.sqrt(surface.m00 * surface.mu)
-    wc1 = np.asarray(critical_interference(c, factors, material, hertz=hertz), dtype=float)  # eq. (65)
     nodes = dict(
         g=geom.g(theta),
-        c=c,
+        c=geom.c(theta),
         f1=np.asarray(factors.f1, float),
         f2=np.asarray(factors.f2, float),
         f3=np.asarray(factors.f3, float),
-        tc1=wc1 / sigma,
+        counts=counts,
+        weights=w * (np.cos(theta) * np.sin(theta))[None, :],
     )
-    return w * np.cos(theta) * np.sin(theta), nodes
+    return nodes, factors
 
 
-def _production(surface, l_values, material, hertz, accuracy) -> np.ndarray:
-    """Columns A^e, A^ep, A^p, W^e, W^ep, W^p, K, K_jump per unit nominal area."""
-    w_theta, nodes = _theta_nodes(surface, hertz, accuracy, material)
+def _tc1(surface, hertz, accuracy, material) -> np.ndarray:
+    """tc1 = ω_c(θ, κ_m = c(θ))/√(m00 μ) at the θ-nodes, eq. (65) (asperity.critical_interference)."""
+    nodes, factors = _theta_geometry(surface, hertz, accuracy)
     sigma = math.sqrt(surface.m00 * surface.mu)
-    per_node = polar_elastoplastic_integrals(l_values, nodes, sigma, _material_constants(material), accuracy)
-    tot = np.einsum("ijq,j->iq", per_node, w_theta) * surface.summit_density
-    out = tot.copy()
-    out[:, 6] = tot[:, 6] + tot[:, 7]  # K = ∫ dW_i/dω p_sum + jump term
-    return out
+    return np.asarray(critical_interference(nodes["c"], factors, material, hertz=hertz), dtype=float) / sigma
+
+
+def _theta_nodes(surface: SpectralMoments, hertz: str, accuracy, material: AsperityMaterial):
+    """The θ-node data of :func:`_theta_geometry` with the material's ``tc1``."""
+    return {**_theta_geometry(surface, hertz, accuracy)[0], "tc1": _tc1(surface, hertz, accuracy, material)}
+
+
+def _production_many(surface, l_values, materials, hertz, accuracy, return_info=False):
+    """Columns A^e, A^ep, A^p, W^e, W^ep, W^p, K, K_jump per unit nominal area, shape
+    (n_l, n_materials, 8): the hyperbola integrals are the surface's, computed once per l."""
+    nodes = _theta_geometry(surface, hertz, accuracy)[0]
+    tc1 = np.array([_tc1(surface, hertz, accuracy, m) for m in materials])
+    sigma = math.sqrt(surface.m00 * surface.mu)
+    tot, info = polar_elastoplastic_integrals(l_values, nodes, sigma, [_material_constants(m) for m in materials],
+                                              accuracy, tc1=tc1, return_info=True)
+    out = tot * surface.summit_density
+    out[..., 6] = out[..., 6] + out[..., 7]  # K = ∫ dW_i/dω p_sum + jump term
+    return (out, info) if return_info else out
+
+
+def _production(surface, l_values, material, hertz, accuracy, return_info=False):
+    """:func:`_production_many` for one material: shape (n_l, 8)."""
+    out, info = _production_many(surface, l_values, [material], hertz, accuracy, return_info=True)
+    return (out[:, 0], info[:, 0]) if return_info else out[:, 0]
 
 
 #: the column groups whose sum is each production column's total (s_interpolation's
@@ -286,8 +306,8 @@ def elastoplastic_contact(
               To prescribe a plasticity index ψ use
               ``AsperityMaterial(E, asperity.yield_strength_for_plasticity_index(ψ, surface, E))``.
     hertz     "exact" | "paper" (ellipse factors as in contact.elastic_contact).
-    accuracy  production preset of integrals.rules.ELASTOPLASTIC_PRESETS ("table", "plot") or a
-              QuadratureSettings.
+    accuracy  production preset of integrals.rules.ELASTOPLASTIC_PRESETS ("table", "plot"), an
+              ElastoPlasticSettings or a QuadratureSettings.
     method    "production" (numba) or "reference" (the scipy slow twin; seconds per point).
     validity  "refuse" | "warn" | "off": outside the model's range (contact.validity): warnings
               for s < 0 or A/A0 > 0.1, ValueError for A/A0 > 1 unless "warn".
@@ -301,21 +321,45 @@ def elastoplastic_contact(
     Returns :class:`ElastoPlasticCurves`: A/A0, W/A0 (unit of E*), K/A0 = −d(W/A0)/dh (unit of
     E* per L) and the elastic / elasto-plastic / plastic parts of area and load.
     """
-    s_arr = _check_inputs(surface, s, material, hertz, method)
+    return elastoplastic_contact_many(surface, s, [material], hertz=hertz, accuracy=accuracy, method=method,
+                                      validity=validity, interpolate_s=interpolate_s, s_rtol=s_rtol)[0]
+
+
+def elastoplastic_contact_many(surface: SpectralMoments, s, materials, *, hertz: str = "exact", accuracy="table",
+                               method: str = "production", validity: str = "refuse", interpolate_s: bool = True,
+                               s_rtol: float | None = None) -> list[ElastoPlasticCurves]:
+    """:func:`elastoplastic_contact` for several materials on one surface (same arguments;
+    ``materials`` a sequence of AsperityMaterial): one :class:`ElastoPlasticCurves` each, the
+    same numbers as one call per material. Faster: the summit measure's hyperbola integrals
+    depend on the surface and the separation only, and are computed once for all materials
+    (what a sweep over ψ or Y at fixed moments needs)."""
+    materials = list(materials)
+    if not materials:
+        raise ValueError("give at least one material")
+    s_arr = _check_inputs(surface, s, materials[0], hertz, method)
+    for m in materials[1:]:
+        instance("material", m, AsperityMaterial)
     choice("validity", validity, VALIDITY_MODES)
     check_bandwidth(surface.mu, method)
-    how = None
+    how = [None] * len(materials)
     if method == "production":
         elastoplastic_settings_for(accuracy)  # validates the preset name
         rtol = _s_rtol(accuracy, s_rtol)
-        def evaluate(x):
-            return _production(surface, surface.l_from_s(x), material, hertz, accuracy)
+
+        def evaluate(x, which):
+            return _production_many(surface, surface.l_from_s(x), [materials[k] for k in which], hertz, accuracy)
         if interpolate_s:
-            cols, how = interpolated_columns(evaluate, s_arr, rtol, _COLUMN_TOTALS)
+            cols, how = interpolated_columns_many(evaluate, s_arr, len(materials), rtol, _COLUMN_TOTALS)
         else:
-            cols, how = evaluate(s_arr), SInterpolation("direct", s_arr.size, 0, math.nan, rtol)
+            cols = evaluate(s_arr, np.arange(len(materials)))
+            how = [SInterpolation("direct", s_arr.size, 0, math.nan, rtol)] * len(materials)
     else:
-        cols = np.array([reference_integrals(surface, float(x), material, hertz=hertz) for x in s_arr])
+        cols = np.array([[reference_integrals(surface, float(x), m, hertz=hertz) for m in materials] for x in s_arr])
+    return [_curves(surface, s_arr, cols[:, k], materials[k], hertz, method, validity, how[k])
+            for k in range(len(materials))]
+
+
+def _curves(surface, s_arr, cols, material, hertz, method, validity, how) -> ElastoPlasticCurves:
     Ae, Aep, Ap, We, Wep, Wp, K, Kj = (np.asarray(cols[:, q], dtype=float) for q in range(8))
     check_validity(s_arr, Ae + Aep + Ap, mode=validity)
     return ElastoPlasticCurves(

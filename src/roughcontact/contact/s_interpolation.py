@@ -22,7 +22,7 @@ from typing import Callable, Sequence
 
 import numpy as np
 
-__all__ = ["SInterpolation", "lobatto_nodes", "barycentric", "interpolated_columns"]
+__all__ = ["SInterpolation", "lobatto_nodes", "barycentric", "interpolated_columns", "interpolated_columns_many"]
 
 #: Chebyshev–Lobatto grids tried: 8, 16, 32, 64 intervals
 N_START = 8
@@ -112,26 +112,62 @@ def interpolated_columns(evaluate: Callable[[np.ndarray], np.ndarray], s, rtol: 
     ``evaluate(s_array)`` returns the columns at those separations (finite). With fewer than
     ``min_points`` distinct separations, or when no verified grid is cheaper than the points
     themselves, every point is evaluated directly."""
+    cols, how = interpolated_columns_many(lambda x, active: evaluate(x)[:, None, :], s, 1, rtol, totals,
+                                          min_points=min_points)
+    return cols[:, 0], how[0]
+
+
+def interpolated_columns_many(evaluate: Callable[[np.ndarray, np.ndarray], np.ndarray], s, n_models: int,
+                              rtol: float, totals: Sequence[Sequence[int]], *, min_points: int = 48):
+    """:func:`interpolated_columns` for ``n_models`` models sharing their evaluations (e.g. the
+    materials of one surface, whose hyperbola integrals are computed once per separation):
+    ``evaluate(s_array, models)`` returns (len(s_array), len(models), n_columns) for the model
+    indices ``models``. Each model's grid is chosen and verified on its own columns exactly as
+    :func:`interpolated_columns` would for it alone (the same nodes, the same check, so the same
+    numbers); models still unverified are evaluated on the finer grid. Returns
+    (columns (len(s), n_models, n_columns), [SInterpolation per model])."""
     s = np.asarray(s, dtype=float)
     lo, hi = float(s.min()), float(s.max())
     distinct = np.unique(s).size
+    everyone = np.arange(n_models)
     if distinct < min_points or hi <= lo:
-        return evaluate(s), SInterpolation("direct", s.size, 0, math.nan, rtol)
+        return evaluate(s, everyone), [SInterpolation("direct", s.size, 0, math.nan, rtol)] * n_models
     n = N_START
     nodes = lobatto_nodes(lo, hi, n)
-    values = evaluate(nodes)
+    values = evaluate(nodes, everyone)
     spent = n + 1
-    while 2 * n + 1 <= distinct and n <= N_MAX and np.all(np.isfinite(values)):
+    result = np.empty((s.size, n_models, values.shape[2]))
+    how: list[SInterpolation | None] = [None] * n_models
+    active = everyone
+    spent_at = np.zeros(n_models, dtype=int)  # evaluations when a model fell back to every point
+    while active.size and 2 * n + 1 <= distinct and n <= N_MAX:
         fine = lobatto_nodes(lo, hi, 2 * n)
         between = fine[1::2]
-        direct = evaluate(between)
+        finite = np.array([np.all(np.isfinite(values[:, k])) for k in active])
+        spent_at[active[~finite]] = spent
+        active = active[finite]
+        if not active.size:
+            break
+        direct = evaluate(between, active)
         spent += n
-        error = _relative_error(_interpolate(nodes, values, between), direct, totals)
-        merged = np.empty((2 * n + 1, values.shape[1]))
+        merged = np.empty((2 * n + 1, n_models, values.shape[2]))
         merged[0::2] = values
-        merged[1::2] = direct
+        merged[1::2][:, active] = direct
+        still = []
+        for j, k in enumerate(active):
+            error = _relative_error(_interpolate(nodes, values[:, k], between), direct[:, j], totals)
+            if error <= rtol:
+                result[:, k] = _interpolate(fine, merged[:, k], s)
+                how[k] = SInterpolation("chebyshev", spent, 2 * n, error, rtol)
+            else:
+                still.append(k)
+        active = np.array(still, dtype=int)
         nodes, values = fine, merged
-        if error <= rtol:
-            return _interpolate(nodes, values, s), SInterpolation("chebyshev", spent, 2 * n, error, rtol)
         n *= 2
-    return evaluate(s), SInterpolation("direct", spent + s.size, 0, math.nan, rtol)
+    spent_at[active] = spent
+    rest = np.array([k for k in everyone if how[k] is None], dtype=int)
+    if rest.size:
+        result[:, rest] = evaluate(s, rest)
+        for k in rest:
+            how[k] = SInterpolation("direct", int(spent_at[k]) + s.size, 0, math.nan, rtol)
+    return result, how

@@ -41,6 +41,16 @@ _MATERIAL = ("psi", "Y", "E_star", "c_h", "wp_over_wc", "yield_coefficient")
 SWEEPABLE = _MOMENTS + _MATERIAL
 
 _ELASTIC_FIELDS = ("area_fraction", "pressure", "stiffness")
+#: axes a sweep may interpolate (outermost first), and from how many values on
+INTERPOLABLE = ("m00", "psi")
+AXIS_MIN_POINTS = 17
+#: tolerance of an axis' check at the points between its nodes: a fifth of the preset's bound
+#: (integrals.rules.ELASTOPLASTIC_PRESETS: "plot" 1e-8, "table" 1e-11) — above the quadrature's
+#: own variation from one value to the next (the θ-levels and regime pieces a point needs change
+#: in steps of its accuracy), which the check sees too; with s's tenth and the quadrature's own
+#: error the sum stays within the bound
+AXIS_RTOL = {"plot": 2e-9, "table": 2e-12}
+AXIS_RTOL_OTHER = 2e-9
 
 
 @dataclass(frozen=True)
@@ -59,6 +69,16 @@ class SweepSpec:
     interpolate_s each elasto-plastic curve from a verified Chebyshev interpolant in s when it
              has ≥ 48 separations (elastoplastic_contact; the measured bound is in the
              Dataset's attributes ``s_interpolation_*``).
+    interpolate_axes  axes among "m00", "psi" whose values (≥ AXIS_MIN_POINTS of them,
+             positive) come from a verified Chebyshev interpolant in ln(value), as s does:
+             the model at Lobatto nodes, checked at the points between them to the s
+             tolerance, the measured error in the attributes ``<axis>_interpolation_*``;
+             where the check fails up to the finest grid cheaper than the values, every value
+             is computed ("direct"). Off by default (()): measured on the Table 1 slopes at
+             "plot", m00 over a factor 2 verifies with 17 nodes (error 1e-10) and over a factor
+             10 with 33, but m00 over 0.02 … 1 and ψ over 0.2 … 5 do not verify (the yield
+             onset makes the fields steep in ln ψ), and the failed checks cost up to 1.7× the
+             direct values; worth it for dense axes over narrow ranges.
     units    {"length": ..., "stress": ...} of the inputs, UDUNITS strings (stored as the variables' units;
              None: the dimensional variables get no units attribute).
     """
@@ -72,6 +92,7 @@ class SweepSpec:
     with_elastic: bool = True
     validity: str = "warn"
     interpolate_s: bool = True
+    interpolate_axes: Sequence[str] = ()
     units: Mapping[str, str] | None = None
 
     def __post_init__(self) -> None:
@@ -99,6 +120,9 @@ class SweepSpec:
         elif self.closure not in CLOSURES:
             raise ValueError(f"closure must be one of {', '.join(CLOSURES)}; got {self.closure!r}")
         choice("validity", self.validity, VALIDITY_MODES)
+        for name in self.interpolate_axes:
+            choice("interpolate_axes", name, INTERPOLABLE)
+        object.__setattr__(self, "interpolate_axes", tuple(self.interpolate_axes))
         s = np.atleast_1d(np.asarray(self.s, dtype=float))
         if s.ndim != 1 or s.size == 0 or not np.all(np.isfinite(s)):
             raise ValueError("s must be a non-empty 1-D list of finite separations h/sqrt(m00)")
@@ -148,6 +172,107 @@ def _validate(spec: SweepSpec) -> list:
     return out
 
 
+class _Progress:
+    """progress(done, total) after every combination computed directly (an interpolated axis
+    computes its nodes, not its values: the count then ends at total with ``finish``)."""
+
+    def __init__(self, callback, total):
+        self.callback, self.total, self.done = callback, total, 0
+
+    def add(self, n):
+        self.done = min(self.total, self.done + n)
+        if self.callback is not None:
+            for k in range(self.done - n + 1, self.done + 1):
+                self.callback(k, self.total)
+
+    def finish(self):
+        if self.done < self.total:
+            self.add(self.total - self.done)
+
+
+def _ep_block(spec: SweepSpec, counter: _Progress):
+    """The elasto-plastic fields over the sweep, shape (*spec.shape, len(FIELDS)), and the
+    records of how ({"s": [...], "m00": [...], "psi": [...]}, SInterpolation attributes)."""
+    for axis in INTERPOLABLE:
+        values = spec.axes.get(axis)
+        if axis in spec.interpolate_axes and values is not None and values.size >= AXIS_MIN_POINTS \
+                and np.all(values > 0):
+            return _interpolated_block(spec, axis, counter)
+    return _direct_block(spec, counter)
+
+
+def _direct_block(spec: SweepSpec, counter: _Progress):
+    """Every combination computed; the materials of one surface in one call
+    (elastoplastic_contact_many: the hyperbola integrals are the surface's, computed once)."""
+    from .elastoplastic import ElastoPlasticCurves, elastoplastic_contact_many
+
+    jobs = _validate(spec)
+    out = np.empty(spec.shape + (len(ElastoPlasticCurves.FIELDS),))
+    records = {"s": [], "m00": [], "psi": []}
+    by_surface: dict = {}
+    for idx, surface, material in jobs:
+        by_surface.setdefault(surface, []).append((idx, material))
+    for surface, members in by_surface.items():
+        curves = elastoplastic_contact_many(surface, spec.s, [m for _, m in members], hertz=spec.hertz,
+                                            accuracy=spec.accuracy, validity=spec.validity,
+                                            interpolate_s=spec.interpolate_s)
+        for (idx, _), ep in zip(members, curves):
+            out[idx] = np.stack([getattr(ep, f) for f in ElastoPlasticCurves.FIELDS], axis=-1)
+            records["s"].append(ep.interpolation.as_attrs())
+        counter.add(len(members))
+    return out, records
+
+
+def _interpolated_block(spec: SweepSpec, axis: str, counter: _Progress):
+    """The block with ``axis`` interpolated (contact.s_interpolation in ln(value)): the block of
+    the remaining axes at Chebyshev–Lobatto nodes, checked between them."""
+    from .elastoplastic import ElastoPlasticCurves
+    from .s_interpolation import interpolated_columns
+
+    pos = list(spec.axes).index(axis)
+    n_fields = len(ElastoPlasticCurves.FIELDS)
+    records = {"s": [], "m00": [], "psi": []}
+    rest = None
+    values = spec.axes[axis]
+    exact = dict(zip(np.log(values).tolist(), values.tolist()))  # exp(ln v) need not be v
+
+    def evaluate(x):
+        nonlocal rest
+        sub = replace(spec, axes={**spec.axes, axis: np.array([exact.get(v, np.exp(v)) for v in x.tolist()])},
+                      interpolate_axes=tuple(a for a in spec.interpolate_axes if a != axis))
+        block, recs = _ep_block(sub, _Progress(None, sub.points))
+        for k, v in recs.items():
+            records[k].extend(v)
+        moved = np.moveaxis(block, pos, 0)
+        rest = moved.shape[1:]
+        return moved.reshape(x.size, -1)
+
+    # the fields' totals (area, pressure, stiffness) for the parts' floor, per flattened column
+    group = {f: ((0,) if "area" in f else (1,) if "pressure" in f else (2,))
+             for f in ElastoPlasticCurves.FIELDS}
+    group = [group[f] for f in ElastoPlasticCurves.FIELDS]
+    n_rest = int(np.prod(spec.shape)) // spec.axes[axis].size
+    totals = [tuple(r * n_fields + g for g in group[q]) for r in range(n_rest) for q in range(n_fields)]
+    rtol = AXIS_RTOL.get(spec.accuracy, AXIS_RTOL_OTHER) if isinstance(spec.accuracy, str) else AXIS_RTOL_OTHER
+    cols, how = interpolated_columns(evaluate, np.log(values), rtol, totals, min_points=AXIS_MIN_POINTS)
+    records[axis].append(how.as_attrs(f"{axis}_interpolation"))
+    counter.add(spec.points // spec.s.size)
+    block = np.moveaxis(cols.reshape((values.size, *rest)), 0, pos)
+    return block, records
+
+
+def _axis_attrs(axis: str, records) -> dict:
+    """An interpolated axis over the blocks it was interpolated in: "chebyshev", "direct" or
+    "mixed"; the largest measured error; its tolerance; the values computed in all."""
+    p = f"{axis}_interpolation"
+    methods = {r[p] for r in records}
+    errors = [r[f"{p}_error"] for r in records if r[p] != "direct"]
+    return {p: methods.pop() if len(methods) == 1 else "mixed",
+            f"{p}_error": float(np.nanmax(errors)) if errors else float("nan"),
+            f"{p}_rtol": max(float(r[f"{p}_rtol"]) for r in records),
+            f"{p}_nodes": int(sum(int(r[f"{p}_nodes"]) for r in records))}
+
+
 def run_sweep(spec: SweepSpec, progress: Callable[[int, int], None] | None = None):
     """Evaluate the sweep; an ``xarray.Dataset`` over (*axes, s) with units and attributes.
 
@@ -158,24 +283,21 @@ def run_sweep(spec: SweepSpec, progress: Callable[[int, int], None] | None = Non
     """
     import xarray as xr
 
+    from ..asperity import plasticity_index
     from .elastic import elastic_contact
-    from .elastoplastic import ElastoPlasticCurves, elastoplastic_contact
+    from .elastoplastic import ElastoPlasticCurves
 
     ep_fields = ElastoPlasticCurves.FIELDS
     jobs = _validate(spec)
     shape = spec.shape
-    data = {f: np.empty(shape) for f in ep_fields}
+    counter = _Progress(progress, len(jobs))
+    block, records = _ep_block(spec, counter)
+    data = {f: block[..., k] for k, f in enumerate(ep_fields)}
     if spec.with_elastic:
         data.update({f"elastic_model_{f}": np.empty(shape) for f in _ELASTIC_FIELDS})
     per_combo = {k: np.empty(shape[:-1]) for k in ("psi", "Y", "H")}
     elastic_done = {}  # the elastic model depends on (surface, E*) only, not on the material
-    how = []
-    for n, (idx, surface, material) in enumerate(jobs, start=1):
-        ep = elastoplastic_contact(surface, spec.s, material, hertz=spec.hertz, accuracy=spec.accuracy,
-                                   validity=spec.validity, interpolate_s=spec.interpolate_s)
-        how.append(ep.interpolation)
-        for f in ep_fields:
-            data[f][idx] = getattr(ep, f)
+    for idx, surface, material in jobs:
         if spec.with_elastic:
             key = (surface, material.E_star)
             if key not in elastic_done:
@@ -185,9 +307,9 @@ def run_sweep(spec: SweepSpec, progress: Callable[[int, int], None] | None = Non
                 )
             for f in _ELASTIC_FIELDS:
                 data[f"elastic_model_{f}"][idx] = getattr(elastic_done[key], f)
-        per_combo["psi"][idx], per_combo["Y"][idx], per_combo["H"][idx] = ep.psi, material.Y, material.H
-        if progress is not None:
-            progress(n, len(jobs))
+        per_combo["psi"][idx] = plasticity_index(surface, material)
+        per_combo["Y"][idx], per_combo["H"][idx] = material.Y, material.H
+    counter.finish()
 
     system = check_units(spec.units)
     punits = parameter_units(system["length"], system["stress"]) if system else {
@@ -212,7 +334,8 @@ def run_sweep(spec: SweepSpec, progress: Callable[[int, int], None] | None = Non
         hertz=spec.hertz,
         accuracy=spec.accuracy,
         **{f"fixed_{k}": v for k, v in spec.fixed.items()},
-        **_interpolation_attrs([h.as_attrs() for h in how]),
+        **_interpolation_attrs(records["s"]),
+        **{k: v for axis in INTERPOLABLE if records[axis] for k, v in _axis_attrs(axis, records[axis]).items()},
     )
     return ds
 
@@ -251,6 +374,10 @@ def combine(pieces: Sequence, axis: str):
                    combine_attrs="override")
     if all("s_interpolation" in p.attrs for p in pieces):  # the whole sweep's, not the first piece's
         ds.attrs.update(_interpolation_attrs([p.attrs for p in pieces]))
+    for name in INTERPOLABLE:
+        with_axis = [p.attrs for p in pieces if f"{name}_interpolation" in p.attrs]
+        if with_axis:
+            ds.attrs.update(_axis_attrs(name, with_axis))
     return ds
 
 
@@ -306,5 +433,6 @@ def spec_from_config(cfg: Mapping, units: Mapping[str, str] | None = None) -> Sw
         accuracy=cfg.get("accuracy", "plot"),
         with_elastic=bool(cfg.get("with_elastic", True)),
         interpolate_s=bool(cfg.get("interpolate_s", True)),
+        interpolate_axes=tuple(cfg.get("interpolate_axes", ())),
         **({"units": dict(units)} if units else {}),
     )

@@ -6,9 +6,7 @@ the interference t inside, against the Gaussian φ(t + l − r g(θ)). What make
 
 * t in closed form. Elastic summits need only J_ν(a) = ∫₀^∞ t^ν φ(t − a) dt, ν = 1/2, 1, 3/2,
   evaluated from the Chebyshev tables of normal_moments.py (≤ 7e-16 relative, exact zero
-  below a ≈ −38.6) instead of ~200 tanh-sinh nodes per (θ, r) node. Plastic summits need
-  J_0, J_1 at a shifted argument; only the finite elastic and elasto-plastic t-pieces of a
-  summit that straddles first yield are integrated numerically (Gauss–Legendre).
+  below a ≈ −38.6) instead of ~200 tanh-sinh nodes per (θ, r) node.
 * r on a partition that follows the integrand: for l > 0 the factor e^{−r²/2} φ(r g − l)
   is a Gaussian of width 1/√(1 + g²) centred near r = l g/(1 + g²) while a = r g − l < 0,
   and beyond r = l/g (a > 0) J_ν is algebraic and e^{−r²/2} sets the decay; the pieces are
@@ -19,6 +17,10 @@ the interference t inside, against the Gaussian φ(t + l − r g(θ)). What make
   nodes in g (9, then 17, 33, 65 if needed: nested) and ln of the scaled integrals is
   interpolated; the θ-sum then costs one short Clenshaw series per θ-node. If the series has
   not converged to the preset's tolerance at 65 nodes, every θ-node is integrated directly.
+* (elasto-plastic) the τ = r t route: the law depends on τ = r t alone (times powers of r), so
+  each column is ∫ F(τ) G_k(τ) dτ with G_k the summit measure on the hyperbola r t = τ, computed
+  once per separation on a grid in (g, ln τ) and interpolated; each θ-node integrates its
+  regime pieces in ln τ against it (section "The elasto-plastic integrals" below).
 
 θ is a composite tanh-sinh rule (split at the axis turn θ*, the peak of g and the Hertz
 kinks): it converges exponentially despite the logarithmic end-point singularities of the
@@ -33,7 +35,9 @@ the others. Slow twins: the J_ν tables against mpmath
 (tests/integrals/test_normal_moments.py); the r-rule against scipy.integrate.quad and the
 g-interpolation against the direct θ-sum (tests/integrals/test_kernels.py); the whole elastic chain
 against the mpmath integrator in reference.py (tests/contact/test_elastic.py, test_reference.py); the
-elasto-plastic kernel against the scipy twin elastoplastic.reference_integrals
+hyperbola integrals against scipy.integrate.quad, their closed form at τ = 0 against mpmath, the
+grid against direct evaluation, the θ-levels against finer ones (tests/integrals/test_ep_kernel.py);
+the elasto-plastic kernel against the scipy twin elastoplastic.reference_integrals
 (tests/contact/test_elastoplastic.py).
 """
 
@@ -483,296 +487,946 @@ def _asperity_law_array(omega, kappa, f1, f2, f3, wc, E_star, ratio, cH, dp, ln_
         out[i, 3] = reg
 
 
-@numba.njit(cache=True)
-def _t_rule_row(lo, hi, a, log_span):
-    """Which t-rule a piece [lo, hi] gets (rows of the (3, n) node arrays: n, n/2, n/4 nodes):
-    by the variation of ln φ(t − a) across it, (hi − lo)·max(1, |a − t_mid|), and the span of
-    ln t if integrated in ln t. Short pieces (high ψ: t_c ≪ 1) are nearly polynomial;
-    tests/contact/test_elastoplastic.py checks every preset against finer settings and the twin."""
-    length = hi - lo
-    c = max(length * max(1.0, abs(a - 0.5 * (lo + hi))), log_span)
-    if c <= 0.1:
-        return 2
-    if c <= 0.75:
-        return 1
-    return 0
+
+# ---------------------------------------------------------------------------------------
+# The elasto-plastic integrals by the τ = r t route (docs/performance.md, issue 24)
+# ---------------------------------------------------------------------------------------
+# Per θ-node the summit measure is r³ e^{−r²/2} φ(t − r g + l) dt dr (docs/derivation.md) and
+# the law of an asperity with interference ω = σ t and curvature κ_m = r c depends on r only
+# through powers once written in τ = r t: A, W ∝ τ-law/r², dW/dω ∝ τ-law/r (the regimes are
+# τ < t_c1, t_c1 < τ < (ω_p/ω_c) t_c1, τ beyond). With t = τ/r,
+#
+#     column = ∫_0^∞ F(τ) G_k(τ) dτ,   G_k(τ) = ∫_0^∞ r^k e^{−r²/2} φ(τ/r + l − g r) dr,
+#
+# k = 0 for A, W and k = 1 for dW/dω (and the load-jump term, G_1(t_c1)), F the law at
+# (ω, κ) = (σ τ, c). G_k depends on θ through g only, and on τ smoothly: it is computed once per
+# separation on a grid — Chebyshev–Lobatto nodes in g over the θ-nodes' range times panels in
+# s = ln τ — and ln G_k is interpolated there; every θ-node then integrates its regime pieces
+# in s (Gauss–Legendre) against the interpolant, with the law evaluated at those nodes only.
+_HYP_KP = 0.5  # the power of r whose integrand places the window (between G_0's r⁰ and G_1's r¹)
+_HYP_LEVEL = TAIL + 6.0  # the window of the r-integrand: e^{−46} of its maximum
+_GRID_BELOW = 10.0  # the s-grid starts this far below ln τ of the mass (and of the smallest t_c1)
+_GRID_MAX_PANELS = 48
+_GRID_MAX_NG = 32  # Chebyshev intervals in g (nested 4, 8, 16, 32)
+_GRID_NG_START = 4
+_PART_FLOOR = 1e-3  # the presets' convention: parts relative to max(|part|, 1e-3 |total|)
+_UNDERFLOW_SHIFT = 800.0  # e^{−800} times any column's scale (≤ e^{40}) is below the smallest double
 
 
 @numba.njit(cache=True)
-def _t_window(a):
-    """[lo, hi] of t ≥ 0 outside which φ(t − a) is below e^{−TAIL} of its maximum."""
-    if a > 0.0:
-        return max(0.0, a - _SPAN), a + _SPAN
-    # maximum at t = 0: exp(−(t − a)²/2)/exp(−a²/2) = exp(−|a| t − t²/2) = e^{−TAIL}
-    # at t = −|a| + √(a² + 2 TAIL), i.e. a + √(a² + 2 TAIL) since a ≤ 0
-    return 0.0, a + math.sqrt(a * a + 2.0 * TAIL)
+def _hyp_log_integrand(u, tau, g, l):
+    """H(u) = ln of r^{3/2} e^{−r²/2 − z²/2}, r = e^u, z = τ/r + l − g r (the integrand of
+    G_{1/2} in u = ln r: r^{1/2}·r from dr = r du)."""
+    r = math.exp(u)
+    z = tau / r + l - g * r
+    return (_HYP_KP + 1.0) * u - 0.5 * r * r - 0.5 * z * z
 
 
 @numba.njit(cache=True)
-def _t_elastic_piece(lo, hi, a, e, yt, wt, in_sqrt):
-    """e^{e} ∫_lo^hi (t^{1/2}, t, t^{3/2}) φ(t − a) dt (Gauss–Legendre; in u = √t if in_sqrt;
-    the rule of _t_rule_row)."""
-    row = _t_rule_row(lo, hi, a, 0.0)
-    y = yt[row]
-    w = wt[row]
-    m_h = 0.0
-    m_1 = 0.0
-    m_3 = 0.0
-    if in_sqrt:
-        u0 = math.sqrt(lo)
-        du = math.sqrt(hi) - u0
-        for k in range(y.shape[0]):
-            if w[k] == 0.0:
-                break
-            u = u0 + du * y[k]
-            t = u * u
-            d = t - a
-            f = 2.0 * du * w[k] * u * _INV_SQRT_2PI * math.exp(e - 0.5 * d * d)  # dt = 2u du
-            m_h += f * u
-            m_1 += f * t
-            m_3 += f * t * u
-    else:
-        width = hi - lo
-        for k in range(y.shape[0]):
-            if w[k] == 0.0:
-                break
-            t = lo + width * y[k]
-            d = t - a
-            f = width * w[k] * _INV_SQRT_2PI * math.exp(e - 0.5 * d * d)
-            st = math.sqrt(t)
-            m_h += f * st
-            m_1 += f * t
-            m_3 += f * t * st
-    return m_h, m_1, m_3
+def _hyp_slope(r, tau, g, l):
+    """(dH/du, d²H/du²) at r = e^u. dH/du = P(r)/r², P = −q r⁴ + l g r³ + (3/2) r² + l τ r + τ²
+    (q = 1 + g²): one positive root for l ≥ 0 and at most three for l < 0 (Descartes)."""
+    q = 1.0 + g * g
+    r2 = r * r
+    P = ((-q * r + l * g) * r + (_HYP_KP + 1.0)) * r2 + l * tau * r + tau * tau
+    dP = ((-4.0 * q * r + 3.0 * l * g) * r + 2.0 * (_HYP_KP + 1.0)) * r + l * tau
+    h1 = P / r2
+    return h1, dP / r - 2.0 * h1
 
 
 @numba.njit(cache=True)
-def _t_elastic(lo, hi, a, e, y, w):
-    """_t_elastic_piece on [lo, hi], split at the peak t = a if inside; a piece that starts
-    near t = 0 (lo < hi/2) in u = √t (t^{1/2} is not smooth at 0: in t the short rules would
-    converge like ((1 + √(lo/hi))/(1 − √(lo/hi)))^{−2n} only)."""
-    if lo < a < hi:
-        h1, o1, t1 = _t_elastic_piece(lo, a, a, e, y, w, lo < 0.5 * a)
-        h2, o2, t2 = _t_elastic_piece(a, hi, a, e, y, w, a < 0.5 * hi)
-        return h1 + h2, o1 + o2, t1 + t2
-    return _t_elastic_piece(lo, hi, a, e, y, w, lo < 0.5 * hi)
+def _hyp_mode(tau, g, l, u, lo, hi):
+    """A root of dH/du in [lo, hi] (positive at lo, negative at hi): Newton from u, bisection
+    when a step leaves the bracket."""
+    for _ in range(100):
+        h1, h2 = _hyp_slope(math.exp(u), tau, g, l)
+        if h1 > 0.0:
+            lo = u
+        else:
+            hi = u
+        un = u - h1 / h2 if h2 < 0.0 else 0.5 * (lo + hi)
+        if not (lo < un < hi):
+            un = 0.5 * (lo + hi)
+        if abs(un - u) < 1e-10 or hi - lo < 1e-10:
+            return un
+        u = un
+    return u
 
 
 @numba.njit(cache=True)
-def _t_ep_piece(lo, hi, a, e, yt, wt, in_log, sigma, kappa, f1, f3, wc, ratio, cH, dp, ln_r):
-    """e^{e} ∫_lo^hi (A, W, dW/dω)(σ t) φ(t − a) dt with the elasto-plastic law (76), (77), and
-    at the same nodes e^{e} ∫_lo^hi (t^{1/2}, t, t^{3/2}) φ(t − a) dt (for the complement of
-    the elastic part); Gauss–Legendre in t, or in ln t when ``in_log`` (the law holds ln t: a
-    piece reaching towards t = 0, up to t_p/t_c = 45, would converge only algebraically in
-    t); the rule of _t_rule_row."""
-    acc_a = 0.0
-    acc_w = 0.0
-    acc_s = 0.0
-    m_h = 0.0
-    m_1 = 0.0
-    m_3 = 0.0
-    span = math.log(hi / lo) if in_log else hi - lo
-    row = _t_rule_row(lo, hi, a, span if in_log else 0.0)
-    y = yt[row]
-    w = wt[row]
-    ln_top = math.log(ratio * wc / (sigma * lo)) if in_log else 0.0  # ln(ω_p/ω) at t = lo
-    for k in range(y.shape[0]):
-        if w[k] == 0.0:
+def _hyp_edge(tau, g, l, um, level, direction, width):
+    """u beyond the maximum um (direction ±1) where H = level (to ±0.5): a bracket from the
+    Laplace guess um ± √(2·46)·width, then Newton safeguarded by bisection (H is monotone
+    outside the outermost maximum)."""
+    near = um
+    far = um + direction * width * math.sqrt(2.0 * _HYP_LEVEL)
+    step = width
+    for _ in range(60):
+        if _hyp_log_integrand(far, tau, g, l) < level:
             break
-        if in_log:
-            t = lo * math.exp(span * y[k])
-            jac = span * t
-            ln_q = ln_top - span * y[k]
+        near = far
+        far = far + direction * step * 4.0
+        step *= 2.0
+    u = far
+    for _ in range(60):
+        f = _hyp_log_integrand(u, tau, g, l) - level
+        if abs(f) < 0.5:
+            return u
+        if f > 0.0:
+            near = u
         else:
-            t = lo + span * y[k]
-            jac = span
-            ln_q = math.log(ratio / (sigma * t / wc))
-        d = t - a
-        f = jac * w[k] * _INV_SQRT_2PI * math.exp(e - 0.5 * d * d)
-        A, W, S = _asperity_elastoplastic(sigma * t, kappa, f1, f3, wc, ratio, cH, dp, ln_r, ln_q)
-        acc_a += f * A
-        acc_w += f * W
-        acc_s += f * S
-        st = math.sqrt(t)
-        m_h += f * st
-        m_1 += f * t
-        m_3 += f * t * st
-    return acc_a, acc_w, acc_s, m_h, m_1, m_3
+            far = u
+        h1, _ = _hyp_slope(math.exp(u), tau, g, l)
+        un = u - f / h1 if h1 != 0.0 else 0.5 * (near + far)
+        if not (min(near, far) < un < max(near, far)):
+            un = 0.5 * (near + far)
+        u = un
+    return u
 
 
 @numba.njit(cache=True)
-def _t_ep(lo, hi, a, e, y, w, sigma, kappa, f1, f3, wc, ratio, cH, dp, ln_r):
-    """_t_ep_piece on [lo, hi] (lo ≥ t_c > 0), split at the peak t = a if inside; in ln t
-    where a piece starts near 0 relative to its length (lo < hi/2)."""
-    if lo < a < hi:
-        a1, w1, s1, h1, o1, t1 = _t_ep_piece(lo, a, a, e, y, w, lo < 0.5 * a, sigma, kappa, f1, f3, wc, ratio, cH,
-                                             dp, ln_r)
-        a2, w2, s2, h2, o2, t2 = _t_ep_piece(a, hi, a, e, y, w, a < 0.5 * hi, sigma, kappa, f1, f3, wc, ratio, cH,
-                                             dp, ln_r)
-        return a1 + a2, w1 + w2, s1 + s2, h1 + h2, o1 + o2, t1 + t2
-    return _t_ep_piece(lo, hi, a, e, y, w, lo < 0.5 * hi, sigma, kappa, f1, f3, wc, ratio, cH, dp, ln_r)
+def _hyperbola_moments(tau, g, l, h0, cw):
+    """(ln G_0, ln G_1)(τ) for τ > 0: G_k = ∫_0^∞ r^k e^{−r²/2} φ(τ/r + l − g r) dr, the mass
+    of the summit measure on the hyperbola r t = τ.
+
+    In u = ln r the integrand decays double-exponentially at both ends (τ/r for r → 0,
+    e^{−r²/2} for r → ∞) and is analytic: the trapezoidal rule converges exponentially, and it
+    does not care that the integrand can have two maxima (the φ-peak z = 0 at small r and the
+    r-bump, for l < 0) or a long shoulder between them. H = A + B with A = (3/2)u − r²/2
+    (maximum at r_A = √(3/2)) and B = −z²/2 (maximum at z = 0, r_z); dH/du = A' + B' has the
+    sign of both outside [u_A, u_z], so every maximum lies between and is found by Newton from
+    either end. Window: where H ≥ H_max − 46; step min(h0, cw × the narrowest Laplace width
+    (maxima, φ-peak)). Logs returned: no under- or overflow for any l."""
+    rA = math.sqrt(_HYP_KP + 1.0)
+    uA = math.log(rA)
+    if l >= 0.0:
+        rz = (l + math.sqrt(l * l + 4.0 * g * tau)) / (2.0 * g)
+    else:  # the same root without cancellation
+        rz = 2.0 * tau / (-l + math.sqrt(l * l + 4.0 * g * tau))
+    uz = math.log(rz)
+    lo = min(uA, uz) - 1e-9
+    hi = max(uA, uz) + 1e-9
+    m1 = _hyp_mode(tau, g, l, uA, lo, hi)
+    m2 = _hyp_mode(tau, g, l, uz, lo, hi)
+    H1 = _hyp_log_integrand(m1, tau, g, l)
+    H2 = _hyp_log_integrand(m2, tau, g, l)
+    Hmax = max(H1, H2)
+    level = Hmax - _HYP_LEVEL
+    if abs(m1 - m2) < 1e-7 or H2 < level:
+        m2 = m1
+    if H1 < level:
+        m1 = m2
+    ml = min(m1, m2)
+    mr = max(m1, m2)
+    _, h2 = _hyp_slope(math.exp(ml), tau, g, l)
+    wl = 1.0 / math.sqrt(max(-h2, 1e-12))
+    _, h2 = _hyp_slope(math.exp(mr), tau, g, l)
+    wr = 1.0 / math.sqrt(max(-h2, 1e-12))
+    ulo = _hyp_edge(tau, g, l, ml, level, -1.0, wl)
+    uhi = _hyp_edge(tau, g, l, mr, level, 1.0, wr)
+    wmin = min(wl, wr)
+    if ulo < uz < uhi:
+        wmin = min(wmin, 1.0 / (tau / rz + g * rz))  # the φ-peak: z changes by 1 over this
+    h = min(h0, cw * wmin)
+    n = int((uhi - ulo) / h) + 1
+    h = (uhi - ulo) / n
+    # r and √r by products (one exp per node), refreshed every 32 nodes
+    q = math.exp(h)
+    sq = math.exp(0.5 * h)
+    g0 = 0.0
+    g1 = 0.0
+    r = 0.0
+    sr = 0.0
+    for k in range(n + 1):
+        u = ulo + h * k
+        if k % 32 == 0:
+            r = math.exp(u)
+            sr = math.exp(0.5 * u)
+        z = tau / r + l - g * r
+        e = math.exp((_HYP_KP + 1.0) * u - 0.5 * r * r - 0.5 * z * z - Hmax)
+        if k == 0 or k == n:
+            e *= 0.5
+        g0 += e / sr  # r·e^{…}: r^{3/2}/r^{1/2}
+        g1 += e * sr
+        r *= q
+        sr *= sq
+    base = Hmax + math.log(h * _INV_SQRT_2PI)
+    return base + math.log(g0), base + math.log(g1)
 
 
 @numba.njit(cache=True)
-def _ep_r_piece(lo, hi, in_sqrt, l, g, c, f1, f2, f3, tc1, S, sigma, E_star, ratio, cH, dp, ln_r, pv,
-                with_jump, y_r, w_r, y_t, w_t, jt, acc):
-    """acc[0:8] += e^{S} ∫_lo^hi r³ e^{−r²/2} (t-integrals) dr, columns (A^e, A^ep, A^p, W^e,
-    W^ep, W^p, dW/dω, load-jump term).
-
-    Per r: a = r g − l, κ_m = r c (44), ω_c = σ tc1/r (65), t_c = tc1/r, t_p = (ω_p/ω_c) t_c.
-    A summit whose Gaussian t-window lies below t_c is elastic: σ-powers of (46), (47), (54)
-    times J_1, J_{3/2}, J_{1/2}(a) in closed form; above t_p plastic: (61), (67) with
-    ∫_{t_p}^∞ (1, t) φ(t − a) dt = (J_0(a − t_p), t_p J_0(a − t_p) + J_1(a − t_p)), also
-    closed. Only the elastic piece [lo, t_c] and the elasto-plastic piece [t_c, t_p] of a
-    straddling window are integrated numerically. The jump term: (1/σ) J φ(t_c − a) with
-    J = A^e(ω_c)·(2/3) K_v H − W^e(ω_c) (pv = (2/3) K_v H)."""
-    s15 = sigma * math.sqrt(sigma)
-    ss = math.sqrt(sigma)
-    for k in range(y_r.shape[0]):
-        if in_sqrt:
-            u0 = math.sqrt(lo)
-            du = math.sqrt(hi) - u0
-            u = u0 + du * y_r[k]
-            r = u * u
-            wr = 2.0 * du * w_r[k] * u * r * r * r
-        else:
-            r = lo + (hi - lo) * y_r[k]
-            wr = (hi - lo) * w_r[k] * r * r * r
-        if wr == 0.0:
-            continue
-        e = S - 0.5 * r * r
-        a = r * g - l
-        kappa = r * c  # κ_m = r c(θ), eq. (44)
-        tc = tc1 / r
-        wc = sigma * tc  # ω_c = ω_c(θ, κ_m = c)/r, eq. (65)
-        tp = ratio * tc
-        t_lo, t_hi = _t_window(a)
-        rk = math.sqrt(kappa)
-        ce_a = f1 * math.pi * sigma / kappa  # (46) per unit t
-        ce_w = f2 * (4.0 / 3.0) * E_star * s15 / rk  # (47) per unit t^{3/2}
-        ce_s = 2.0 * f2 * E_star * ss / rk  # (54) per unit t^{1/2}
-        cp_a = 2.0 * f3 * math.pi * sigma / kappa  # (61) per unit t
-        cp_s = 2.0 * f3 * math.pi * cH / kappa  # d(67)/dω
-        if tc >= t_hi:
-            _, jh, j1, j3 = _moments(a, e, jt)
-            acc[0] += wr * ce_a * j1
-            acc[3] += wr * ce_w * j3
-            acc[6] += wr * ce_s * jh
-        elif tp <= t_lo:
-            j0, _, j1, _ = _moments(a, e, jt)
-            acc[2] += wr * cp_a * j1
-            acc[5] += wr * cp_a * cH * j1
-            acc[6] += wr * cp_s * j0
-        else:
-            ep_lo = max(t_lo, tc)
-            ep_hi = min(t_hi, tp)
-            mh = m1 = m3 = 0.0
-            if ep_lo < ep_hi:
-                A, W, Sd, mh, m1, m3 = _t_ep(ep_lo, ep_hi, a, e, y_t, w_t, sigma, kappa, f1, f3, wc, ratio, cH, dp,
-                                             ln_r)
-                acc[1] += wr * A
-                acc[4] += wr * W
-                acc[6] += wr * Sd
-            if tc > t_lo:
-                if tp >= t_hi and tc >= 0.5 * (a + math.sqrt(a * a + 4.0)):
-                    # the window above t_c is all elasto-plastic and t_c lies above the mode of
-                    # t φ(t − a) (the elastic part is a large share, so the difference does not
-                    # cancel): the closed form minus the t^ν-integrals at the nodes of that piece
-                    _, jh, j1, j3 = _moments(a, e, jt)
-                    mh, m1, m3 = jh - mh, j1 - m1, j3 - m3
-                else:
-                    mh, m1, m3 = _t_elastic(t_lo, tc, a, e, y_t, w_t)
-                acc[0] += wr * ce_a * m1
-                acc[3] += wr * ce_w * m3
-                acc[6] += wr * ce_s * mh
-            if tp < t_hi:
-                j0, _, j1, _ = _moments(a - tp, e, jt)
-                p1 = tp * j0 + j1
-                acc[2] += wr * cp_a * p1
-                acc[5] += wr * cp_a * cH * p1
-                acc[6] += wr * cp_s * j0
-        if with_jump:
-            d = tc - a
-            Ae, We, _ = _asperity_elastic(wc, kappa, f1, f2, E_star)
-            acc[7] += wr * (Ae * pv - We) * _INV_SQRT_2PI * math.exp(e - 0.5 * d * d) / sigma
+def _hyperbola_moments_array(tau, g, l, h0, cw, out):
+    """_hyperbola_moments at arrays of (τ, g, l); out[i] = (ln G_0, ln G_1). For the tests."""
+    for i in range(tau.shape[0]):
+        out[i, 0], out[i, 1] = _hyperbola_moments(tau[i], g[i], l[i], h0, cw)
 
 
 @numba.njit(cache=True)
-def _regime_crossing(g, l, tau):
-    """The r > 0 where a regime boundary t = τ/r (τ = t_c1 or (ω_p/ω_c) t_c1) meets the bulk
-    of the t-mass, the mode t_m(a) = (a + √(a² + 4))/2 of t φ(t − a), a = r g − l: the
-    regime parts change fastest there. τ/r falls and t_m(r g − l) rises with r: bisection
-    in ln r."""
-    lo = -60.0
-    hi = math.log(max(1.0, abs(l) / g) + 2.0 * math.sqrt(tau) + 2.0 * tau + 10.0)
-    for _ in range(80):
-        mid = 0.5 * (lo + hi)
-        r = math.exp(mid)
-        a = r * g - l
-        if tau / r > 0.5 * (a + math.sqrt(a * a + 4.0)):
-            lo = mid
-        else:
-            hi = mid
-        if hi - lo < 1e-6:
+def _cheb_coefficients(vals, n, out):
+    """Chebyshev coefficients out[0..n] of the interpolant through vals[k] at x_k = cos(πk/n)
+    (n divides 32: the cosines come from one table of cos(πm/32))."""
+    table = np.empty(64)
+    cd = math.cos(math.pi / 32.0)
+    sd = math.sin(math.pi / 32.0)
+    c = 1.0
+    s = 0.0
+    for m in range(64):  # cos(πm/32) by rotation (error ≤ 64 ulp)
+        table[m] = c
+        c, s = c * cd - s * sd, s * cd + c * sd
+    f = 32 // n
+    for j in range(n + 1):
+        s = 0.0
+        for k in range(n + 1):
+            v = vals[k]
+            if k == 0 or k == n:
+                v *= 0.5
+            s += v * table[((j * k) % (2 * n)) * f]
+        s *= 2.0 / n
+        if j == 0 or j == n:
+            s *= 0.5
+        out[j] = s
+
+
+@numba.njit(cache=True)
+def _clenshaw(c, n, x):
+    """Σ_{j=0}^{n} c[j] T_j(x)."""
+    b0 = 0.0
+    b1 = 0.0
+    x2 = 2.0 * x
+    for i in range(n, 0, -1):
+        t = c[i] + x2 * b0 - b1
+        b1 = b0
+        b0 = t
+    return c[0] + x * b0 - b1
+
+
+@numba.njit(cache=True)
+def _ellipse_tau_max(g, l, T):
+    """max r t over the quadrant's part of the ellipse {r² + (t + l − g r)² ≤ 2(S + T)}
+    (S = l²/(2(1 + g²)) for l > 0, the minimum of the quadratic form there): beyond it the
+    summit measure is below e^{−T} of its maximum. Parametrised r = ρ cos φ,
+    t + l − g r = ρ sin φ; scanned in φ."""
+    S = 0.5 * l * l / (1.0 + g * g) if l > 0.0 else 0.0
+    rho = math.sqrt(2.0 * (S + T))
+    best = 0.0
+    for k in range(129):
+        ph = -0.5 * math.pi + math.pi * k / 128.0
+        r = rho * math.cos(ph)
+        t = rho * (math.sin(ph) + g * math.cos(ph)) - l
+        if r > 0.0 and t > 0.0 and r * t > best:
+            best = r * t
+    return best
+
+
+@numba.njit(cache=True)
+def _tau_of_mass(g, l):
+    """τ = r t at the maximum of r^{5/2} t e^{−(r² + (t + l − g r)²)/2} (concave in (r, t):
+    Newton), the bulk of the elasto-plastic τ-integrands; the τ-pieces are split there."""
+    q = 1.0 + g * g
+    r = 1.5
+    t = max(1.0, 1.5 * g - l)
+    for _ in range(60):
+        d = t + l - g * r
+        fr = 2.5 / r - r + g * d
+        ft = 1.0 / t - d
+        frr = -2.5 / (r * r) - q
+        ftt = -1.0 / (t * t) - 1.0
+        det = frr * ftt - g * g
+        dr = -(ftt * fr - g * ft) / det
+        dt = -(frr * ft - g * fr) / det
+        lam = 1.0
+        while r + lam * dr <= 0.0 or t + lam * dt <= 0.0:
+            lam *= 0.5
+        r += lam * dr
+        t += lam * dt
+        if abs(dr) < 1e-12 * r and abs(dt) < 1e-12 * t:
             break
-    return math.exp(0.5 * (lo + hi))
+    return r * t
 
 
 @numba.njit(cache=True)
-def _ep_theta_node(l, g, c, f1, f2, f3, tc1, sigma, E_star, ratio, cH, dp, ln_r, pv, with_jump,
-                   y_r, w_r, y_t, w_t, jt, cuts, acc):
-    """acc[0:8] = the (r, t)-integrals at one θ-node (unscaled). The r-partition is the
-    elastic one (_r_cuts) plus the r where t_c and t_p cross the bulk of the t-mass
-    (_regime_crossing)."""
-    n, S, sqrt0 = _r_cuts(g, l, cuts)
-    r_c = _regime_crossing(g, l, tc1)
-    r_p = _regime_crossing(g, l, ratio * tc1)
-    for extra in (0.5 * r_c, r_c, 2.0 * r_c, r_p):
-        if cuts[0] < extra < cuts[n - 1]:
-            p = n
-            while cuts[p - 1] > extra:
-                cuts[p] = cuts[p - 1]
-                p -= 1
-            cuts[p] = extra
-            n += 1
+def _log_normal_moment(x, nu, jt):
+    """ln J_ν(x), ν = 0 or 1, from the normal-moment tables (_moments; for x < 0 scaled by
+    e^{x²/2}, so nothing underflows or cancels: J_1 = x Φ + φ loses digits for x ≪ 0)."""
+    e = 0.5 * x * x if x < 0.0 else 0.0
+    j0, _, j1, _ = _moments(x, e, jt)
+    return math.log(j0 if nu == 0 else j1) - e
+
+
+@numba.njit(cache=True)
+def _hyperbola_at_zero(g, l, jt):
+    """(ln G_0, ln G_1) at τ = 0 in closed form: ∫_0^∞ r^k e^{−(q r² − 2 l g r + l²)/2} dr/√(2π),
+    q = 1 + g², x = l g/√q: G_0 = e^{−l²/(2q)} J_0(x)/√q, G_1 = e^{−l²/(2q)} J_1(x)/q (J_ν the
+    normal moments: no cancellation, no underflow)."""
+    q = 1.0 + g * g
+    sq = math.sqrt(q)
+    x = l * g / sq
+    base = -0.5 * l * l / q
+    return base + _log_normal_moment(x, 0, jt) - math.log(sq), base + _log_normal_moment(x, 1, jt) - math.log(q)
+
+
+@numba.njit(cache=True)
+def _hyperbola_at_zero_array(g, l, jt, out):
+    """_hyperbola_at_zero at arrays; out[i] = (ln G_0, ln G_1). For the tests."""
+    for i in range(g.shape[0]):
+        out[i, 0], out[i, 1] = _hyperbola_at_zero(g[i], l[i], jt)
+
+
+@numba.njit(cache=True)
+def _below_params(c, n, width, ln_zero, s_lo):
+    """The model of one G_k below the grid (τ < τ_lo = e^{s_lo}) from its panel-0 Chebyshev
+    series c (degree n, panel width ``width``): (scale, a, b, kind).
+
+    kind 0 — the expansion at small τ, G(τ) = G(0)(1 + τ(a ln τ + b)) (the τ/r term shifts φ by
+    O(τ ln τ)), matched to ln G and d ln G/ds at s_lo; used while G(τ_lo) < 2 G(0), the
+    expansion's range. kind 1 — a power law G = G(τ_lo)(τ/τ_lo)^a (b = s_lo), matched to the
+    same slope, where G still grows much below the grid (heavy loads: the mass sits at large τ,
+    and what lies below τ_lo is negligible)."""
+    ln_lo = _clenshaw(c, n, -1.0)
+    slope = _cheb_slope_left(c, n) * 2.0 / width
+    if ln_lo - ln_zero < math.log(2.0):
+        ratio = math.exp(ln_lo - ln_zero)
+        y = ratio - 1.0
+        e = math.exp(-s_lo)
+        a = (ratio * slope - y) * e
+        return math.exp(ln_zero), a, y * e - a * s_lo, 0
+    return math.exp(ln_lo), max(slope, 0.0), s_lo, 1
+
+
+@numba.njit(cache=True)
+def _below_value(tau, s, scale, a, b, kind):
+    """G(τ) of the model of _below_params (s = ln τ)."""
+    if kind == 0:
+        return scale * (1.0 + tau * (a * s + b))
+    return scale * math.exp(a * (s - b))
+
+
+@numba.njit(cache=True)
+def _below_integral(nu, scale, a, b, kind, tb):
+    """∫_0^tb τ^ν G(τ) dτ with G the model of _below_params."""
+    if tb <= 0.0:
+        return 0.0
+    n1 = nu + 1.0
+    if kind == 0:
+        n2 = nu + 2.0
+        return scale * (tb ** n1 / n1 + a * tb ** n2 * (math.log(tb) / n2 - 1.0 / (n2 * n2)) + b * tb ** n2 / n2)
+    return scale * math.exp((n1 + a) * math.log(tb) - a * b) / (n1 + a)
+
+
+@numba.njit(cache=True)
+def _cheb_slope_left(c, n):
+    """d/dx Σ c[j] T_j(x) at x = −1: Σ c[j] (−1)^{j+1} j²."""
+    s = 0.0
+    for j in range(1, n + 1):
+        s += c[j] * (j * j if j % 2 == 1 else -j * j)
+    return s
+
+
+@numba.njit(cache=True)
+def _panel_values(l, g, a, b, d, step, h0, cw, shift, out):
+    """out[k, q] = ln G_q at the Lobatto points s_k = (a + b)/2 + (b − a)/2 cos(πk/d), for
+    k = 0, step, 2·step, … (step 2: the points of degree d/2, which nest); plus ``shift`` (the
+    separation's scale l²/(2(1 + g_hi²)): the largest values are O(1), nothing underflows)."""
+    for k in range(0, d + 1, step):
+        s = 0.5 * (a + b) + 0.5 * (b - a) * math.cos(math.pi * k / d)
+        v0, v1 = _hyperbola_moments(math.exp(s), g, l, h0, cw)
+        out[k, 0] = v0 + shift
+        out[k, 1] = v1 + shift
+
+
+@numba.njit(cache=True)
+def _panel_tail(vals, n, step, tmp, coef):
+    """Largest of the last three Chebyshev coefficients of ln G_0, ln G_1 on one panel from the
+    n + 1 values vals[0], vals[step], … (degree n)."""
+    e = 0.0
+    for q in range(2):
+        for k in range(n + 1):
+            tmp[k] = vals[k * step, q]
+        _cheb_coefficients(tmp, n, coef)
+        for j in range(n - 2, n + 1):
+            e = max(e, abs(coef[j]))
+    return e
+
+
+@numba.njit(cache=True)
+def _grid_panels(l, g_hi, g_lo, s_lo, s_mid, s_hi, width, d, tol, h0, cw, shift, edges, degree, vals, info):
+    """Panels of the s-grid, tested at both ends of the g-range: from panels of ``width`` below
+    s_mid and width/2 above (where ln G bends), each first at degree d/2, raised to d (the
+    points nest) and bisected while the last three Chebyshev coefficients of ln G_k exceed
+    ``tol``. Returns (P, ok); edges[0..P], degree[p] (d/2 or d); the values at g_hi, g_lo go to
+    vals[0] and vals[_GRID_MAX_NG]; info[0] += hyperbola integrals computed."""
+    stack_a = np.empty(4 * _GRID_MAX_PANELS)
+    stack_b = np.empty(4 * _GRID_MAX_PANELS)
+    top = 0
+    s_mid = min(max(s_mid, s_lo), s_hi)
+    n_hi = int(math.ceil((s_hi - s_mid) / (0.5 * width)))
+    for i in range(n_hi - 1, -1, -1):
+        stack_a[top] = s_mid + (s_hi - s_mid) * i / n_hi
+        stack_b[top] = s_mid + (s_hi - s_mid) * (i + 1) / n_hi
+        top += 1
+    n_lo = int(math.ceil((s_mid - s_lo) / width))
+    for i in range(n_lo - 1, -1, -1):
+        stack_a[top] = s_lo + (s_mid - s_lo) * i / n_lo
+        stack_b[top] = s_lo + (s_mid - s_lo) * (i + 1) / n_lo
+        top += 1
+    vh = np.empty((d + 1, 2))
+    vl = np.empty((d + 1, 2))
+    tmp = np.empty(d + 1)
+    coef = np.empty(d + 1)
+    half = d // 2
+    P = 0
+    ok = True
+    edges[0] = s_lo
+    while top > 0:
+        top -= 1
+        a = stack_a[top]
+        b = stack_b[top]
+        _panel_values(l, g_hi, a, b, d, 2, h0, cw, shift, vh)
+        _panel_values(l, g_lo, a, b, d, 2, h0, cw, shift, vl)
+        info[0] += 2 * (half + 1)
+        n = half
+        if max(_panel_tail(vh, half, 2, tmp, coef), _panel_tail(vl, half, 2, tmp, coef)) > tol:
+            for k in range(1, d, 2):  # the odd points: degree d
+                s = 0.5 * (a + b) + 0.5 * (b - a) * math.cos(math.pi * k / d)
+                v0, v1 = _hyperbola_moments(math.exp(s), g_hi, l, h0, cw)
+                vh[k, 0] = v0 + shift
+                vh[k, 1] = v1 + shift
+                v0, v1 = _hyperbola_moments(math.exp(s), g_lo, l, h0, cw)
+                vl[k, 0] = v0 + shift
+                vl[k, 1] = v1 + shift
+            info[0] += 2 * half
+            n = d
+            if max(_panel_tail(vh, d, 1, tmp, coef), _panel_tail(vl, d, 1, tmp, coef)) > tol:
+                if P + top + 2 <= _GRID_MAX_PANELS:
+                    m = 0.5 * (a + b)
+                    stack_a[top] = m
+                    stack_b[top] = b
+                    stack_a[top + 1] = a
+                    stack_b[top + 1] = m
+                    top += 2
+                    continue
+                ok = False
+        vals[0, P] = vh
+        vals[_GRID_MAX_NG, P] = vl
+        degree[P] = n
+        P += 1
+        edges[P] = b
+    return P, ok
+
+
+@numba.njit(cache=True)
+def _grid_fill(l, g_lo, g_hi, rows, stride, edges, degree, P, d, h0, cw, shift, vals):
+    """vals[m] (m = i·stride: the Lobatto point cos(πm/_GRID_MAX_NG) of [g_lo, g_hi]) for
+    the grid rows i in ``rows``, each panel at its degree."""
+    gm = 0.5 * (g_hi + g_lo)
+    gh = 0.5 * (g_hi - g_lo)
+    for i in rows:
+        m = i * stride
+        g = gm + gh * math.cos(math.pi * m / _GRID_MAX_NG)
+        for p in range(P):
+            _panel_values(l, g, edges[p], edges[p + 1], d, d // degree[p], h0, cw, shift, vals[m, p])
+
+
+@numba.njit(cache=True)
+def _grid_g_error(vals, ng, stride, P, d, degree):
+    """The largest of the last three Chebyshev coefficients in g of ln G_q over the s-points
+    where ln G_q (at g_hi) is within e^{−50} of its largest value (nothing else matters)."""
+    tmp = np.empty(_GRID_MAX_NG + 1)
+    out = np.empty(_GRID_MAX_NG + 1)
+    err = 0.0
+    for q in range(2):
+        top = -1e300
+        for p in range(P):
+            for k in range(0, d + 1, d // degree[p]):
+                top = max(top, vals[0, p, k, q])
+        for p in range(P):
+            for k in range(0, d + 1, d // degree[p]):
+                if vals[0, p, k, q] < top - 50.0:
+                    continue
+                for i in range(ng + 1):
+                    tmp[i] = vals[i * stride, p, k, q]
+                _cheb_coefficients(tmp, ng, out)
+                for i in range(max(0, ng - 2), ng + 1):
+                    err = max(err, abs(out[i]))
+    return err
+
+
+@numba.njit(cache=True)
+def _grid_coefficients(l, g_lo, g_hi, vals, ng, stride, P, d, degree, edges, yt, wt, jt, shift, coef, tot_coef):
+    """coef[i, p, j, q]: 2-D Chebyshev coefficients (i in g, j ≤ degree[p] in s) of ln G_q on
+    panel p; tot_coef[k, i]: Chebyshev coefficients in g of ln of the totals ∫_0^∞ τ^ν G_q dτ,
+    (ν, q) = (1, 0), (3/2, 0), (1/2, 1), (0, 1) — the elastic law over every τ (θ-nodes in one
+    regime, and the complement of a large elastic part). The totals: in s on each panel
+    (Gauss–Legendre) plus the part below the grid by the small-τ model (_below_params, closed
+    form)."""
+    tmp = np.empty(max(_GRID_MAX_NG, d) + 1)
+    out = np.empty(max(_GRID_MAX_NG, d) + 1)
+    tot = np.empty((4, _GRID_MAX_NG + 1))
+    for i in range(ng + 1):
+        for p in range(P):
+            n = degree[p]
+            st = d // n
+            for q in range(2):
+                for k in range(n + 1):
+                    tmp[k] = vals[i * stride, p, k * st, q]
+                _cheb_coefficients(tmp, n, out)
+                for j in range(n + 1):
+                    coef[i, p, j, q] = out[j]  # the s-coefficients at g-node i, for now
+        m0 = m1 = m2 = m3 = 0.0
+        for p in range(P):
+            n = degree[p]
+            span = edges[p + 1] - edges[p]
+            for k in range(yt.shape[0]):
+                x = 2.0 * yt[k] - 1.0
+                for j in range(n + 1):
+                    tmp[j] = coef[i, p, j, 0]
+                G0 = math.exp(_clenshaw(tmp, n, x))
+                for j in range(n + 1):
+                    tmp[j] = coef[i, p, j, 1]
+                G1 = math.exp(_clenshaw(tmp, n, x))
+                tau = math.exp(edges[p] + span * yt[k])
+                sq = math.sqrt(tau)
+                wk = span * wt[k] * tau  # dτ = τ ds
+                m0 += wk * tau * G0
+                m1 += wk * tau * sq * G0
+                m2 += wk * sq * G1
+                m3 += wk * G1
+        n = degree[0]
+        g = 0.5 * (g_hi + g_lo) + 0.5 * (g_hi - g_lo) * math.cos(math.pi * i * stride / _GRID_MAX_NG)
+        z0, z1 = _hyperbola_at_zero(g, l, jt)
+        z0 += shift
+        z1 += shift
+        for j in range(n + 1):
+            tmp[j] = coef[i, 0, j, 0]
+            out[j] = coef[i, 0, j, 1]
+        w0 = edges[1] - edges[0]
+        sc0, a0, b0, k0 = _below_params(tmp, n, w0, z0, edges[0])
+        sc1, a1, b1, k1 = _below_params(out, n, w0, z1, edges[0])
+        tb = math.exp(edges[0])
+        # (floored at 1e-300: a g-node whose values underflow contributes nothing, and no −inf
+        # enters the interpolation)
+        tot[0, i] = math.log(max(m0 + _below_integral(1.0, sc0, a0, b0, k0, tb), 1e-300))
+        tot[1, i] = math.log(max(m1 + _below_integral(1.5, sc0, a0, b0, k0, tb), 1e-300))
+        tot[2, i] = math.log(max(m2 + _below_integral(0.5, sc1, a1, b1, k1, tb), 1e-300))
+        tot[3, i] = math.log(max(m3 + _below_integral(0.0, sc1, a1, b1, k1, tb), 1e-300))
+    for k in range(4):
+        _cheb_coefficients(tot[k], ng, tot_coef[k])
+    for p in range(P):
+        for j in range(degree[p] + 1):
+            for q in range(2):
+                for i in range(ng + 1):
+                    tmp[i] = coef[i, p, j, q]
+                _cheb_coefficients(tmp, ng, out)
+                for i in range(ng + 1):
+                    coef[i, p, j, q] = out[i]
+
+
+@numba.njit(cache=True)
+def _ep_node(l, g, c, f1, f2, f3, tc1, sigma, E_star, ratio, cH, dp, ln_r, pv, with_jump,
+             g_lo, g_hi, ng, edges, degree, P, coef, tot_coef, yt, wt, jt, shift, cg, cs, c1, acc):
+    """acc[0:8] = (A^e, A^ep, A^p, W^e, W^ep, W^p, dW/dω, load-jump term) at one θ-node, per unit
+    θ-weight (elastoplastic.py applies the weights and D_sum).
+
+    Each column is ∫ F(τ) G_k(τ) dτ over its regime's τ-range, F the per-asperity law at
+    (ω, κ_m) = (σ τ, c) (the r-powers are in G_k): (46), (47), (54) below t_c1; (76), (75),
+    (77) between; (61), (67) above (ω_p/ω_c) t_c1. In s = ln τ, Gauss–Legendre on each piece,
+    split at the bulk of the τ-mass (and 4 below it); below the grid G = G(0)(1 + τ(a ln τ + b))
+    (_below_params), against which the power laws integrate in closed form. A θ-node whose
+    τ-range is all elastic takes the totals (interpolated in g); a large elastic part is the
+    total minus the rest (no cancellation: it is the larger share)."""
+    x_g = (2.0 * g - g_lo - g_hi) / (g_hi - g_lo) if g_hi > g_lo else 0.0
+    x_g = min(1.0, max(-1.0, x_g))
     for q in range(8):
         acc[q] = 0.0
-    for p in range(n - 1):
-        lo = cuts[p]
-        hi = cuts[p + 1]
-        if hi > lo:
-            in_sqrt = lo < 0.1 * hi and (lo > 0.0 or sqrt0)
-            _ep_r_piece(lo, hi, in_sqrt, l, g, c, f1, f2, f3, tc1, S, sigma, E_star, ratio, cH, dp, ln_r, pv,
-                        with_jump, y_r, w_r, y_t, w_t, jt, acc)
-    f = math.exp(-S)
-    for q in range(8):
-        acc[q] *= f
+    s_lo = edges[0]
+    s_hi = edges[P]
+    s_c = math.log(tc1)  # t_c = t_c1/r: in τ = r t the boundary is τ = t_c1, eq. (65)
+    s_p = s_c + ln_r
+    # the law per unit G at τ = 1 (power laws below the grid, totals)
+    Ae1, We1, Se1 = _asperity_elastic(sigma, c, f1, f2, E_star)
+    Ap1, Wp1, Sp1 = _asperity_plastic(sigma, c, f3, cH)
+    if s_c >= s_hi:  # all elastic: the totals
+        acc[0] = Ae1 * math.exp(_clenshaw(tot_coef[0], ng, x_g))
+        acc[3] = We1 * math.exp(_clenshaw(tot_coef[1], ng, x_g))
+        acc[6] = Se1 * math.exp(_clenshaw(tot_coef[2], ng, x_g))
+        return
+    for p in range(P):
+        for j in range(degree[p] + 1):
+            for q in range(2):
+                for i in range(ng + 1):
+                    cs[i] = coef[i, p, j, q]
+                cg[p, j, q] = _clenshaw(cs, ng, x_g)
+    s_m = math.log(_tau_of_mass(g, l))
+    complement = s_c >= s_m  # the elastic part is the larger share: total minus the rest
+    rest_a = rest_w = rest_s = 0.0  # the elastic law's moments above t_c1 (for the complement)
+    # below the grid (τ < τ_lo): the model of _below_params
+    n = degree[0]
+    for j in range(n + 1):
+        cs[j] = cg[0, j, 0]
+    z0, z1 = _hyperbola_at_zero(g, l, jt)
+    z0 += shift
+    z1 += shift
+    for j in range(n + 1):
+        c1[j] = cg[0, j, 1]
+    sc0, a0_, b0_, k0 = _below_params(cs, n, edges[1] - edges[0], z0, s_lo)
+    sc1, a1_, b1_, k1 = _below_params(c1, n, edges[1] - edges[0], z1, s_lo)
+    for kind in range(3):  # 0 elastic, 1 elasto-plastic, 2 plastic
+        if kind == 0:
+            if complement:
+                continue
+            a0, b0 = -1e300, min(s_c, s_hi)
+        elif kind == 1:
+            a0, b0 = s_c, min(s_p, s_hi)
+        else:
+            a0, b0 = s_p, s_hi
+        if b0 <= a0:
+            continue
+        if kind != 1 and a0 < s_lo:  # below the grid: the power laws against the model, closed form
+            tb = math.exp(min(b0, s_lo))
+            if kind == 0:
+                acc[0] += Ae1 * _below_integral(1.0, sc0, a0_, b0_, k0, tb)
+                acc[3] += We1 * _below_integral(1.5, sc0, a0_, b0_, k0, tb)
+                acc[6] += Se1 * _below_integral(0.5, sc1, a1_, b1_, k1, tb)
+            else:
+                ta = math.exp(a0)
+                ma = _below_integral(1.0, sc0, a0_, b0_, k0, tb) - _below_integral(1.0, sc0, a0_, b0_, k0, ta)
+                acc[2] += Ap1 * ma
+                acc[6] += Sp1 * (_below_integral(0.0, sc1, a1_, b1_, k1, tb) - _below_integral(0.0, sc1, a1_, b1_, k1, ta))
+                rest_a += ma
+                rest_w += _below_integral(1.5, sc0, a0_, b0_, k0, tb) - _below_integral(1.5, sc0, a0_, b0_, k0, ta)
+                rest_s += _below_integral(0.5, sc1, a1_, b1_, k1, tb) - _below_integral(0.5, sc1, a1_, b1_, k1, ta)
+            a0 = s_lo
+            if b0 <= a0:
+                continue
+        # sub-pieces: split at the bulk s_m and 4 below it
+        cut1 = s_m - 4.0
+        cut2 = s_m
+        for sub in range(3):
+            a = a0 if sub == 0 else max(a0, cut1 if sub == 1 else cut2)
+            b = b0 if sub == 2 else min(b0, cut1 if sub == 0 else cut2)
+            if b <= a:
+                continue
+            span = b - a
+            p = 0
+            for k in range(yt.shape[0]):
+                s = a + span * yt[k]
+                tau = math.exp(s)
+                if s < s_lo:  # an elasto-plastic piece below the grid (t_c1 < τ_lo): the model
+                    G0 = _below_value(tau, s, sc0, a0_, b0_, k0)
+                    G1 = _below_value(tau, s, sc1, a1_, b1_, k1)
+                else:
+                    while p < P - 1 and s > edges[p + 1]:
+                        p += 1
+                    x = (2.0 * s - edges[p] - edges[p + 1]) / (edges[p + 1] - edges[p])
+                    n = degree[p]
+                    for j in range(n + 1):
+                        cs[j] = cg[p, j, 0]
+                    G0 = math.exp(_clenshaw(cs, n, x))
+                    for j in range(n + 1):
+                        cs[j] = cg[p, j, 1]
+                    G1 = math.exp(_clenshaw(cs, n, x))
+                wk = span * wt[k] * tau  # dτ = τ ds
+                if kind == 0:
+                    A, W, Sd = _asperity_elastic(sigma * tau, c, f1, f2, E_star)
+                    acc[0] += wk * A * G0
+                    acc[3] += wk * W * G0
+                    acc[6] += wk * Sd * G1
+                    continue
+                if kind == 1:  # ln(ω_p/ω) = ln(ω_p/ω_c) − (s − s_c): no log per node
+                    A, W, Sd = _asperity_elastoplastic(sigma * tau, c, f1, f3, sigma * tc1, ratio, cH, dp, ln_r,
+                                                       ln_r - (s - s_c))
+                    acc[1] += wk * A * G0
+                    acc[4] += wk * W * G0
+                else:
+                    A, W, Sd = _asperity_plastic(sigma * tau, c, f3, cH)
+                    acc[2] += wk * A * G0
+                    acc[5] += wk * W * G0
+                acc[6] += wk * Sd * G1
+                st = math.sqrt(tau)
+                rest_a += wk * tau * G0
+                rest_w += wk * tau * st * G0
+                rest_s += wk * st * G1
+    if complement:
+        acc[0] = Ae1 * (math.exp(_clenshaw(tot_coef[0], ng, x_g)) - rest_a)
+        acc[3] = We1 * (math.exp(_clenshaw(tot_coef[1], ng, x_g)) - rest_w)
+        acc[6] += Se1 * (math.exp(_clenshaw(tot_coef[2], ng, x_g)) - rest_s)
+    if with_jump and s_c < s_hi:
+        # −dW/dh gains the load jump J = A_i(ω_c)·(2/3) K_v H − W_i(ω_c) times the density at
+        # t = t_c (errata E17): in τ, J(r = 1)·G_1(t_c1)/σ
+        if s_c < s_lo:
+            G1 = _below_value(tc1, s_c, sc1, a1_, b1_, k1)
+        else:
+            p = 0
+            while p < P - 1 and s_c > edges[p + 1]:
+                p += 1
+            n = degree[p]
+            for j in range(n + 1):
+                cs[j] = cg[p, j, 1]
+            G1 = math.exp(_clenshaw(cs, n, (2.0 * s_c - edges[p] - edges[p + 1]) / (edges[p + 1] - edges[p])))
+        Ae, We, _ = _asperity_elastic(sigma * tc1, c, f1, f2, E_star)
+        acc[7] = (Ae * pv - We) * G1 / sigma
 
 
 @numba.njit(cache=True)
-def _ep_pairs(pairs, l_values, g, c, f1, f2, f3, tc1, sigma, E_star, ratio, cH, dp, pv, with_jump,
-              y_r, w_r, y_t, w_t, jt, out):
-    """out[i, j, :] for the (l, θ-node) pairs ij = i·n_θ + j in ``pairs``."""
-    n_theta = g.shape[0]
+def _grid_ng_start(g_lo, g_hi, tol):
+    """The first g-grid (intervals, a power of 2 in [4, 32]): ln G_k depends on g like
+    ln(1 + g²) (the Gaussian's width 1/√(1 + g²)), singular at g = ±i, so Chebyshev
+    coefficients fall like ρ^{−n}, ρ the Bernstein parameter of ±i for [g_lo, g_hi]; n with
+    ρ^{−n} ≤ tol, two more for safety. (The grid is still checked and doubled if needed;
+    starting here keeps the result independent of how many threads compute it.)"""
+    if not g_hi > g_lo * (1.0 + 1e-12):
+        return 1
+    w = (1j - 0.5 * (g_hi + g_lo)) / (0.5 * (g_hi - g_lo))
+    z = w + np.sqrt(w * w - 1.0)
+    rho = max(abs(z), 1.0 / abs(z))
+    n = math.log(1.0 / tol) / math.log(max(rho, 1.0001)) + 2.0
+    ng = _GRID_NG_START
+    while ng < n and ng < _GRID_MAX_NG:
+        ng *= 2
+    return ng
+
+
+@numba.njit(cache=True)
+def _ep_grid_panels(l, g_lo, g_hi, d, width, tol, h0, cw, shift, edges, degree, vals, info):
+    """The s-panels of the grid for one separation (_grid_panels on [s_lo, s_hi]: from ln τ of
+    the ellipse e^{−40} down to 10 below the bulk of the mass; below, the small-τ model — the
+    grid depends on the surface and l only, not on the material, so materials share it).
+    Returns P; info[1] = 0 if the panels' tolerance was not reached."""
+    t_hi = max(_ellipse_tau_max(g_hi, l, TAIL), _ellipse_tau_max(g_lo, l, TAIL))
+    s_hi = math.log(t_hi)
+    s_mass = math.log(_tau_of_mass(0.5 * (g_lo + g_hi), l))
+    s_lo = s_mass - _GRID_BELOW
+    s_lo = min(max(s_lo, s_hi - 40.0), s_hi - 8.0)
+    P, ok = _grid_panels(l, g_hi, g_lo, s_lo, s_mass - 4.0, s_hi, width, d, tol, h0, cw, shift, edges, degree, vals,
+                         info)
+    if not ok:
+        info[1] = 0.0
+    return P
+
+
+@numba.njit(cache=True)
+def _ep_grid_rows(ng, first, rows):
+    """The interior g-rows of the ng-interval grid not on the previous (ng/2) grid; their count."""
+    n = 0
+    for i in range(1, ng):
+        if first or i % 2 == 1:
+            rows[n] = i
+            n += 1
+    return n
+
+
+@numba.njit(cache=True)
+def _ep_grid_next(ng, vals, P, d, degree, tol, info):
+    """After the ng-grid's rows are in: 0 if the g-coefficients converged (or nothing to
+    refine), else the next ng (info[1] = 0 if ng is already the largest)."""
+    if ng == 1 or _grid_g_error(vals, ng, _GRID_MAX_NG // ng, P, d, degree) <= tol:
+        return 0
+    if ng == _GRID_MAX_NG:
+        info[1] = 0.0
+        return 0
+    return 2 * ng
+
+
+@numba.njit(cache=True)
+def _ep_grid(l, g_lo, g_hi, d, width, tol, h0, cw, shift, yt, wt, jt, edges, degree, vals, coef,
+             tot_coef, info):
+    """The grid of ln G_k for one separation (serial): panels in s, then g-nodes doubled
+    (nested Lobatto: 4, 8, 16, 32 intervals) until the g-coefficients converge; coefficients
+    and totals. Returns (P, ng); info[0] += hyperbola integrals computed; info[1] = 0 if a
+    tolerance was not reached (panels or g)."""
+    P = _ep_grid_panels(l, g_lo, g_hi, d, width, tol, h0, cw, shift, edges, degree, vals, info)
+    ng = _grid_ng_start(g_lo, g_hi, tol)
+    rows = np.empty(_GRID_MAX_NG + 1, dtype=np.int64)
+    first = True
+    while True:
+        n_rows = _ep_grid_rows(ng, first, rows)
+        first = False
+        _grid_fill(l, g_lo, g_hi, rows[:n_rows], _GRID_MAX_NG // ng, edges, degree, P, d, h0, cw, shift, vals)
+        for p in range(P):
+            info[0] += n_rows * (degree[p] + 1)
+        nxt = _ep_grid_next(ng, vals, P, d, degree, tol, info)
+        if nxt == 0:
+            break
+        ng = nxt
+    _grid_coefficients(l, g_lo, g_hi, vals, ng, _GRID_MAX_NG // ng, P, d, degree, edges, yt, wt, jt, shift, coef,
+                       tot_coef)
+    return P, ng
+
+
+@numba.njit(cache=True)
+def _ep_grid_values(l, g_lo, g_hi, d, width, tol, h0, cw, yt, wt, jt, tau, g, out, info):
+    """Build one separation's grid and evaluate ln G_0, ln G_1 from it at (τ[i], g[i]) (inside
+    the g-range; below the grid by the model of _below_params); out[i] = (ln G_0, ln G_1).
+    info = (hyperbola integrals computed, grid converged, panels, g-intervals, s at the grid's
+    start). For the tests."""
+    vals = np.empty((_GRID_MAX_NG + 1, _GRID_MAX_PANELS, d + 1, 2))
+    coef = np.empty((_GRID_MAX_NG + 1, _GRID_MAX_PANELS, d + 1, 2))
+    edges = np.empty(_GRID_MAX_PANELS + 1)
+    degree = np.empty(_GRID_MAX_PANELS, dtype=np.int64)
+    tot_coef = np.empty((4, _GRID_MAX_NG + 1))
+    info[0] = 0.0
+    info[1] = 1.0
+    P, ng = _ep_grid(l, g_lo, g_hi, d, width, tol, h0, cw, 0.0, yt, wt, jt, edges, degree, vals, coef,
+                     tot_coef, info)
+    info[2] = P
+    info[3] = ng
+    info[4] = edges[0]
+    cs = np.empty(max(d, ng) + 1)
+    c = np.empty((2, d + 1))
+    for i in range(tau.shape[0]):
+        x_g = (2.0 * g[i] - g_lo - g_hi) / (g_hi - g_lo) if g_hi > g_lo else 0.0
+        s = math.log(tau[i])
+        p = 0
+        while p < P - 1 and s > edges[p + 1]:
+            p += 1
+        n = degree[p] if s >= edges[0] else degree[0]
+        pp = p if s >= edges[0] else 0
+        for q in range(2):
+            for j in range(n + 1):
+                for k in range(ng + 1):
+                    cs[k] = coef[k, pp, j, q]
+                c[q, j] = _clenshaw(cs, ng, x_g)
+        if s >= edges[0]:
+            x = (2.0 * s - edges[p] - edges[p + 1]) / (edges[p + 1] - edges[p])
+            out[i, 0] = _clenshaw(c[0], n, x)
+            out[i, 1] = _clenshaw(c[1], n, x)
+        else:
+            z0, z1 = _hyperbola_at_zero(g[i], l, jt)
+            for q in range(2):
+                sc, a, b, kind = _below_params(c[q], n, edges[1] - edges[0], z0 if q == 0 else z1, edges[0])
+                out[i, q] = math.log(_below_value(tau[i], s, sc, a, b, kind))
+
+
+@numba.njit(cache=True)
+def _ep_level_error(s_new, s_old):
+    """max over the columns of |s_new − s_old| relative to max(|column|, 1e-3 |its total|)
+    (the presets' convention for parts)."""
+    e = 0.0
+    for q in range(8):
+        if q < 3:
+            tot = s_new[0] + s_new[1] + s_new[2]
+        elif q < 6:
+            tot = s_new[3] + s_new[4] + s_new[5]
+        else:
+            tot = s_new[6]
+        scale = max(abs(s_new[q]), _PART_FLOOR * abs(tot))
+        diff = abs(s_new[q] - s_old[q])
+        if scale > 0.0:
+            e = max(e, diff / scale)
+        elif diff > 0.0:
+            e = math.inf
+    return e
+
+
+@numba.njit(cache=True)
+def _ep_level_sum(m, n_levels, w_levels, node, cur, prev, e_prev):
+    """cur = the level-m θ-sum (prev keeps level m − 1's); returns (estimate, e_m): the change
+    e_m from level m − 1 and the estimate e_m·min(1, e_m/e_{m−1}) (inf at m = 0)."""
+    n = n_levels[m]
+    for q in range(8):
+        prev[q] = cur[q]
+        s = 0.0
+        for j in range(n):
+            s += w_levels[m, j] * node[j, q]
+        cur[q] = s
+    if m == 0:
+        return math.inf, math.inf
+    e = _ep_level_error(cur, prev)
+    return (e * min(1.0, e / e_prev) if 0.0 < e_prev < math.inf else e), e
+
+
+@numba.njit(cache=True)
+def _ep_nodes(js, l, g, c, f1, f2, f3, tc1, sigma, E_star, ratio, cH, dp, pv, with_jump, g_lo, g_hi, ng, edges,
+              degree, P, d, coef, tot_coef, yt, wt, jt, shift, node):
+    """node[j] = _ep_node at the θ-nodes j in ``js`` (one material)."""
     ln_r = math.log(ratio)
-    cuts = np.empty(12)
+    cg = np.empty((P, d + 1, 2))
+    cs = np.empty(max(d, ng) + 1)
+    c1 = np.empty(d + 1)
     acc = np.empty(8)
-    for ij in pairs:
-        i = ij // n_theta
-        j = ij - i * n_theta
-        _ep_theta_node(l_values[i], g[j], c[j], f1[j], f2[j], f3[j], tc1[j], sigma, E_star, ratio, cH, dp, ln_r,
-                       pv, with_jump, y_r, w_r, y_t, w_t, jt, cuts, acc)
+    for j in js:
+        _ep_node(l, g[j], c[j], f1[j], f2[j], f3[j], tc1[j], sigma, E_star, ratio, cH, dp, ln_r, pv, with_jump,
+                 g_lo, g_hi, ng, edges, degree, P, coef, tot_coef, yt, wt, jt, shift, cg, cs, c1, acc)
         for q in range(8):
-            out[i, j, q] = acc[q]
+            node[j, q] = acc[q]
+
+
+@numba.njit(cache=True)
+def _ep_materials_done(shift, cur, est, m_used, n_levels, out, info):
+    """out[k] = cur[k]·e^{−shift} and info[k, 2:] for every material k."""
+    scale = math.exp(-shift)
+    for k in range(cur.shape[0]):
+        for q in range(8):
+            out[k, q] = cur[k, q] * scale
+        info[k, 2] = m_used[k]
+        info[k, 3] = est[k] if n_levels.shape[0] > 1 else math.nan
+
+
+@numba.njit(cache=True)
+def _ep_separation(l, g, c, f1, f2, f3, tc1, w_levels, n_levels, sigma, E_star, ratio, cH, dp, pv, with_jump,
+                   d, width, tol, h0, cw, theta_tol, yt, wt, jt, work_vals, work_coef, out, info):
+    """out[k, 0:8] = the θ-sums at one separation for each material k (serial); info[k] =
+    (hyperbola integrals computed, 1 if the grid reached its tolerance, θ-level index used,
+    estimated θ-error). tc1[k] and the constants E_star[k], ratio[k], cH[k], dp[k], pv[k],
+    with_jump[k] are the material's; the grid of the hyperbola integrals is the surface's and
+    the separation's, built once for all materials.
+
+    θ-nodes are ordered by the tanh-sinh level they first appear in; n_levels[m] of them make
+    level m, whose weights are w_levels[m] (× cos θ sin θ). Levels are added until the estimate
+    e_m·min(1, e_m/e_{m−1}) ≤ theta_tol, e_m = the change from level m − 1 (tanh-sinh levels
+    nest: the coarser sum costs nothing); with one level only, that one."""
+    n_mat = tc1.shape[0]
+    n_all = n_levels[n_levels.shape[0] - 1]
+    g_lo = g.min()
+    g_hi = g.max()
+    edges = np.empty(_GRID_MAX_PANELS + 1)
+    degree = np.empty(_GRID_MAX_PANELS, dtype=np.int64)
+    tot_coef = np.empty((4, _GRID_MAX_NG + 1))
+    grid_info = np.zeros(2)
+    grid_info[1] = 1.0
+    shift = 0.5 * l * l / (1.0 + g_hi * g_hi) if l > 0.0 else 0.0  # ln G ≤ −shift + O(1): scaled out
+    cur = np.zeros((n_mat, 8))
+    est = np.full(n_mat, math.inf)
+    m_used = np.zeros(n_mat, dtype=np.int64)
+    if shift <= _UNDERFLOW_SHIFT:  # else every column underflows: exactly 0
+        P, ng = _ep_grid(l, g_lo, g_hi, d, width, tol, h0, cw, shift, yt, wt, jt, edges, degree, work_vals,
+                         work_coef, tot_coef, grid_info)
+        node = np.empty((n_all, 8))
+        prev = np.zeros(8)
+        for k in range(n_mat):
+            e_prev = math.inf
+            done = 0
+            for m in range(n_levels.shape[0]):
+                _ep_nodes(np.arange(done, n_levels[m]), l, g, c, f1, f2, f3, tc1[k], sigma, E_star[k], ratio[k],
+                          cH[k], dp[k], pv[k], with_jump[k], g_lo, g_hi, ng, edges, degree, P, d, work_coef,
+                          tot_coef, yt, wt, jt, shift, node)
+                done = n_levels[m]
+                est[k], e_prev = _ep_level_sum(m, n_levels, w_levels, node, cur[k], prev, e_prev)
+                m_used[k] = m
+                if est[k] <= theta_tol:
+                    break
+    for k in range(n_mat):
+        info[k, 0] = grid_info[0]
+        info[k, 1] = grid_info[1]
+    _ep_materials_done(shift, cur, est, m_used, n_levels, out, info)
+
+
+@numba.njit(cache=True)
+def _ep_rows(rows, l_values, g, c, f1, f2, f3, tc1, w_levels, n_levels, sigma, E_star, ratio, cH, dp, pv,
+             with_jump, d, width, tol, h0, cw, theta_tol, yt, wt, jt, out, info):
+    """_ep_separation for the separations in ``rows`` (one work grid reused); out[i, k, :]."""
+    work_vals = np.empty((_GRID_MAX_NG + 1, _GRID_MAX_PANELS, d + 1, 2))
+    work_coef = np.empty((_GRID_MAX_NG + 1, _GRID_MAX_PANELS, d + 1, 2))
+    for i in rows:
+        _ep_separation(l_values[i], g, c, f1, f2, f3, tc1, w_levels, n_levels, sigma, E_star, ratio, cH, dp, pv,
+                       with_jump, d, width, tol, h0, cw, theta_tol, yt, wt, jt, work_vals, work_coef, out[i], info[i])
 
 
 @numba.njit(cache=True, parallel=True)
-def _ep_pairs_parallel(n_blocks, l_values, g, c, f1, f2, f3, tc1, sigma, E_star, ratio, cH, dp, pv, with_jump,
-                       y_r, w_r, y_t, w_t, jt, out):
-    """_ep_pairs over all (l, θ-node) pairs, interleaved over ``n_blocks`` blocks (the cost
-    of a pair varies along θ)."""
-    n = l_values.shape[0] * g.shape[0]
+def _ep_rows_parallel(n_blocks, l_values, g, c, f1, f2, f3, tc1, w_levels, n_levels, sigma, E_star, ratio, cH,
+                      dp, pv, with_jump, d, width, tol, h0, cw, theta_tol, yt, wt, jt, out, info):
+    """_ep_rows over all separations, interleaved over ``n_blocks`` blocks."""
+    n = l_values.shape[0]
     for b in numba.prange(n_blocks):
-        pairs = np.arange(b, n, n_blocks)
-        _ep_pairs(pairs, l_values, g, c, f1, f2, f3, tc1, sigma, E_star, ratio, cH, dp, pv, with_jump,
-                  y_r, w_r, y_t, w_t, jt, out)
+        _ep_rows(np.arange(b, n, n_blocks), l_values, g, c, f1, f2, f3, tc1, w_levels, n_levels, sigma, E_star,
+                 ratio, cH, dp, pv, with_jump, d, width, tol, h0, cw, theta_tol, yt, wt, jt, out, info)
