@@ -11,8 +11,10 @@ import numpy as np
 import pytest
 import yaml
 
-from roughcontact.fe import beam as fe_beam
-from roughcontact.fe import punch as fe_punch
+from roughcontact.examples import runs as fe_runs
+from roughcontact.examples.beam import run_beam
+from roughcontact.examples.punch import PunchRun, PunchSpec, run_punch, to_dataset
+from roughcontact.examples.punch_geometry import PunchGeometry
 from roughcontact.paper import fe_anchors, verify
 from roughcontact.paper.fe_punch import run_bounds
 from roughcontact.paper.plane_stress import reference_solution
@@ -22,29 +24,29 @@ CONFIG = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
 EXPECTED = yaml.safe_load((ROOT / "config" / "expected_verdicts.yaml").read_text())
 BEAM = CONFIG["fe"]["beam"]
 ANCHORS = CONFIG["fe_anchors"]
-GEOMETRY = {k: v for k, v in dataclasses.asdict(fe_beam.BeamSpec()).items()
-            if k in ("length", "height", "width", "E", "nu")}
 
 
 def beam_run(case="3", family="quadratic"):
     """A Table 4 run of the workflow, as common.smk builds it (main mesh and loads)."""
-    c = BEAM["cases"][case]
-    return {"family": family, "case": case, "m00": c["m00"], "law": c["law"], "psi": BEAM["psi"],
-            "E_star": BEAM["E_star"], "tangential": BEAM["tangential"], "mu": None,
-            "surface": dict(BEAM["surface"]), "spec": dict(BEAM["spec"])}
+    return fe_runs.beam_run(BEAM, family, case)
 
 
 @pytest.fixture(scope="module")
 def beam_reference():
     run = beam_run()
     ps = ANCHORS["beam"]["plane_stress"]
-    return {fe_anchors.law_key(run): reference_solution(run, GEOMETRY, ps["mesh"], ps["estimate_mesh"])}
+    return {fe_anchors.law_key(run): reference_solution(run, ps["mesh"], ps["estimate_mesh"])}
 
 
 @pytest.fixture(scope="module")
-def beam_dataset():
+def beam_result():
     """The engine's real run of case 3 (21-node elements, main mesh)."""
-    return fe_beam.beam_case(beam_run()).to_dataset()
+    return run_beam(beam_run())
+
+
+@pytest.fixture(scope="module")
+def beam_dataset(beam_result):
+    return beam_result.to_dataset()
 
 
 def _beam_checks(reference, ds):
@@ -92,29 +94,35 @@ def test_a_five_percent_beam_error_turns_the_gate_red(beam_reference, beam_datas
     assert {c.quantity for c in _beam_checks(beam_reference, hit) if c.verdict != verify.REPRODUCED} == {"equilibrium"}
 
 
-@pytest.mark.slow
-def test_the_audits_experiment_inside_fe_beam(beam_reference, monkeypatch):
-    """The audit's own experiment: every beam deflection scaled by 1.05 inside fe/beam.py
-    (run_beam), the run solved again: the anchors fail."""
-    original = fe_beam.run_beam
-
-    def scaled(*args, **kwargs):
-        r = original(*args, **kwargs)
-        return dataclasses.replace(r, u_N_um=1.05 * r.u_N_um)
-
-    monkeypatch.setattr(fe_beam, "run_beam", scaled)
-    checks = _beam_checks(beam_reference, fe_beam.beam_case(beam_run()).to_dataset())
+def test_the_audits_experiment_in_the_engines_result(beam_reference, beam_result):
+    """The audit's own experiment: every beam deflection scaled by 1.05 in the engine's result
+    (BeamResult.u_N_um, what run_beam returns; the audit did it inside the old fe/beam.py's
+    run_beam), the dataset written from it as the workflow does: the anchors fail."""
+    scaled = dataclasses.replace(beam_result, u_N_um=1.05 * beam_result.u_N_um)
+    checks = _beam_checks(beam_reference, scaled.to_dataset())
     assert {c.quantity for c in checks if c.verdict != verify.REPRODUCED} == {"u_N_centre", "u_N_end", "u_N_profile"}
     assert not _gate(checks)["passed"]
 
 
 def test_anchored_runs_are_the_free_ones_on_the_main_mesh_or_finer():
-    runs = {"q-1-main": beam_run("1"), "q-1-stick": {**beam_run("1"), "tangential": "stick"},
-            "q-1-mesh-6x2": {**beam_run("1"), "spec": {**BEAM["spec"], "n_x": 6, "n_z": 2}},
-            "q-1-mesh-50x12": {**beam_run("1"), "spec": {**BEAM["spec"], "n_x": 50, "n_z": 12}}}
+    base = beam_run("1")
+    runs = {"q-1-main": base, "q-1-stick": base.with_(tangential="stick"),
+            "q-1-mesh-6x2": base.with_(spec={"n_x": 6, "n_z": 2}),
+            "q-1-mesh-50x12": base.with_(spec={"n_x": 50, "n_z": 12})}
     assert fe_anchors.anchored_beam_runs(runs, BEAM["spec"]) == ["q-1-main", "q-1-mesh-50x12"]
-    ep = {**beam_run("4"), "Y": 2070.0}
+    ep = beam_run("4").with_(psi=None, Y=2070.0)
     assert fe_anchors.law_key(ep) != fe_anchors.law_key(beam_run("4")) != fe_anchors.law_key(beam_run("1"))
+
+
+def test_the_workflows_anchored_runs():
+    """The workflow's runs (examples.runs.beam_runs, as common.smk builds them): the 20 the
+    expected_verdicts count (fe_beam_anchor: 80 = 20 x 4) stands on, sharing 2D solutions by law."""
+    runs = fe_runs.beam_runs(BEAM)
+    anchored = fe_anchors.anchored_beam_runs(runs, BEAM["spec"])
+    assert len(anchored) * 4 == EXPECTED["expected_checks"]["fe_beam_anchor"]
+    main = sorted(n for n in runs if n.endswith("-main"))
+    assert set(main) <= set(anchored)  # Table 4's runs (free sliding, the main mesh), both families
+    assert {fe_anchors.law_key(runs[n]) for n in anchored} >= {fe_anchors.law_key(runs[n]) for n in main}
 
 
 # ---------------------------------------------------------------------------------------------
@@ -127,21 +135,22 @@ D_ATTR = CONFIG["fe"]["punch"]["d_attr"]
 
 def punch_run(case):
     """A coarse run under the quarter reading (1000 N on the quarter model: case a slips)."""
-    return {"case": case, "m00": 0.625, "surface": SURFACE, "law": "elastic", "load": 1000.0, "load_on": "quarter",
-            "seating_pressure": 0.1, "increments": 4, "unload_increments": 4, "geometry": COARSE,
-            **({} if case == "frictionless" else {"bound": "coarse-frictionless"})}
+    spec = PunchSpec(geometry=PunchGeometry(**COARSE), load=1000.0, load_on="quarter", seating_pressure=0.1,
+                     increments=4, unload_increments=4)
+    return PunchRun(case=case, spec=spec, m00=0.625, surface=tuple(SURFACE.items()), law="elastic", psi=None,
+                    bound=None if case == "frictionless" else "coarse-frictionless")
 
 
 @pytest.fixture(scope="module")
 def punch_data():
     runs = {f"coarse-{c}": punch_run(c) for c in ("a", "frictionless")}
-    data = {name: fe_punch.to_dataset(fe_punch.punch_case(run)) for name, run in runs.items()}
+    data = {name: to_dataset(run_punch(run)) for name, run in runs.items()}
     return runs, data
 
 
 def _punch_checks(runs, data):
     bounds = run_bounds(data, runs)
-    area = {name: 100.0 for name in runs}  # the quarter punch's top, 10 x 10 mm
+    area = {name: 100.0 for name in runs}  # the quarter punch's top, 10 x 10 mm (independent of the run's geometry)
     return fe_anchors.punch_anchor_checks(runs, data, bounds, area, ANCHORS["punch"]["tolerances"], D_ATTR)
 
 

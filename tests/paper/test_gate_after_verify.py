@@ -4,7 +4,8 @@
 It needs a finished ``snakemake verify`` in this checkout (CI runs it after its step 3; marker
 ``after_verify``, deselected otherwise). In a scratch copy of the checkout (tracked files, results,
 figures, logs and Snakemake's metadata, modification times kept) every written beam deflection is
-multiplied by 1.05 — what the audit did inside fe/beam.py, applied to the results the gate reads, so
+multiplied by 1.05 — what the audit did inside the engine's beam run (then fe/beam.py, now
+roughcontact.examples.beam.run_beam), applied to the results the gate reads, so
 that only the rules downstream of the beam runs run again instead of the twelve beam runs — and
 ``snakemake verify`` is run with a PATH that lacks ccx. The gate must fail, and fail on the
 anchors of roughcontact.paper.fe_anchors, which need no optional tool.

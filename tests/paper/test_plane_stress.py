@@ -10,9 +10,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from roughcontact.examples.beam import BeamRun, BeamSpec
 from roughcontact.fe.closed_forms import hetenyi_finite_beam
 from roughcontact.paper import plane_stress
-from roughcontact.paper.plane_stress import PlaneStressBeam, reference_solution, solve_plane_stress_beam
+from roughcontact.paper.plane_stress import (PlaneStressBeam, plane_stress_beam, reference_solution,
+                                             solve_plane_stress_beam)
 
 SURFACE = {"m20": 8e-5, "m02": 8e-4, "m40": 1.04e-6, "m04": 1.04e-4}  # um units, Table 4
 E_STAR = 1.1274666666666667e5  # N/mm^2, the text's E* of example 9.1
@@ -21,12 +23,15 @@ SPEC = {"load": 1962.0, "initial_load": 4.9, "increments": 16, "z_ratio": 4.0}
 
 
 def test_imports_nothing_of_the_engine():
-    """Independent of the 3D engine: no import from roughcontact.fe (the law comes from the
-    interface layer)."""
+    """Independent of the 3D engine: no import from roughcontact.fe, nor from roughcontact.examples
+    (whose runs are the engine's decks; the run's numbers are read from its fields, the law comes
+    from the interface layer)."""
     tree = ast.parse(Path(plane_stress.__file__).read_text())
     modules = [n.module or "" for n in ast.walk(tree) if isinstance(n, ast.ImportFrom)]
     modules += [a.name for n in ast.walk(tree) if isinstance(n, ast.Import) for a in n.names]
-    assert not [m for m in modules if m.split(".")[0] == "fe" or "roughcontact.fe" in m], modules
+    engine = ("fe", "examples")
+    assert not [m for m in modules if m.split(".")[0] in engine
+                or any(f"roughcontact.{e}" in m for e in engine)], modules
 
 
 class LinearLaw:
@@ -61,9 +66,14 @@ def test_slender_beam_on_a_linear_interface_is_hetenyis(lam_L):
     assert r.equilibrium_error <= 1e-7
 
 
+def _run(m00, **spec):
+    """A beam run of example 9.1 (elastic law, the text's E*), as the workflow builds them."""
+    return BeamRun(spec=BeamSpec(**GEOMETRY, **SPEC, **spec), m00=m00, surface=tuple(SURFACE.items()), law="elastic",
+                   E_star=E_STAR)
+
+
 def _law(m00):
-    run = {"m00": m00, "surface": SURFACE, "law": "elastic", "E_star": E_STAR}
-    return plane_stress.beam_run_law(run, SPEC["initial_load"] / (500.0 * 10.0))
+    return plane_stress.beam_run_law(_run(m00), SPEC["initial_load"] / (500.0 * 10.0))
 
 
 def test_statistical_beam_converges_with_the_mesh():
@@ -95,9 +105,20 @@ def test_configured_mesh_is_converged():
     assert abs(a.u_N_end_um - b.u_N_end_um) <= 1e-4
 
 
+def test_the_2d_problem_is_the_runs():
+    """The 2D beam takes the run's geometry, material and loads, not its 3D mesh; a load patch
+    (not modelled in 2D) is refused."""
+    run = _run(0.0625, n_x=7, n_z=3, elements="quadratic")
+    beam = plane_stress_beam(run, 50, 12)
+    assert beam == PlaneStressBeam(**GEOMETRY, **SPEC, n_x=50, n_z=12)
+    assert plane_stress_beam(run.with_(spec={"n_x": 50}), 50, 12) == beam
+    assert plane_stress_beam(run.with_(spec={"load": 981.0}), 50, 12) != beam
+    with pytest.raises(ValueError, match="load patch"):
+        plane_stress_beam(run.with_(spec={"load_patch": 20.0}), 50, 12)
+
+
 def test_reference_solution_reports_its_error_estimate():
-    run = {"m00": 0.0625, "surface": SURFACE, "law": "elastic", "E_star": E_STAR, "spec": {**SPEC}}
-    r = reference_solution(run, GEOMETRY, (25, 6), (12, 3))
+    r = reference_solution(_run(0.0625), (25, 6), (12, 3))
     assert r["x_mm"][0] == 0.0 and r["x_mm"][-1] == 250.0 and r["u_N_um"].shape == r["x_mm"].shape
     assert 0.0 < r["error_centre_um"] < 1e-2 and 0.0 < r["error_end_um"] < 2e-2
     assert r["u_N_centre_um"] == r["u_N_um"][0]

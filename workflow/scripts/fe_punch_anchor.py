@@ -7,7 +7,6 @@ from pathlib import Path
 import yaml
 
 from roughcontact import io
-from roughcontact.examples.punch_geometry import PunchGeometry
 from roughcontact.paper import fe_anchors, fe_punch, report, verify
 
 
@@ -16,7 +15,7 @@ def run(paths, runs, cfg, d_attr, expected, out, log):
         data = {name: io.read_netcdf(path) for name, path in paths.items()}
         bounds = fe_punch.run_bounds(data, runs)
         # the quarter punch's top face [mm²] (input data: the run's geometry)
-        area = {name: PunchGeometry(**r["geometry"]).punch_half_width ** 2 for name, r in runs.items()}
+        area = {name: r.spec.geometry.punch_half_width ** 2 for name, r in runs.items()}
         checks = fe_anchors.punch_anchor_checks(runs, data, bounds, area, cfg["tolerances"], d_attr)
         checks = verify.apply_expectations(checks, yaml.safe_load(Path(expected).read_text()))
         for c in checks:

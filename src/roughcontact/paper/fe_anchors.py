@@ -23,12 +23,16 @@ round-off error. Pure functions (no I/O): the workflow scripts read and write.
 
 from __future__ import annotations
 
-from typing import Any, Mapping
+from typing import TYPE_CHECKING, Any, Mapping
 
 import numpy as np
 
 from .report import md_escape
 from .verify import NOT_REPRODUCED, REPRODUCED, Check, numerics_id
+
+if TYPE_CHECKING:  # the runs' types, for the reader (this module only reads their fields)
+    from ..examples.beam import BeamRun
+    from ..examples.punch import PunchRun
 
 __all__ = ["BEAM_SCENE", "PUNCH_SCENE", "anchored_beam_runs", "law_key", "beam_anchor_checks",
            "punch_anchor_checks", "render_markdown"]
@@ -39,19 +43,21 @@ BEAM_SCENE, PUNCH_SCENE = "fe_beam_anchor", "fe_punch_anchor"
 # ---------------------------------------------------------------------------------------------
 # the beam
 # ---------------------------------------------------------------------------------------------
-def law_key(run: Mapping[str, Any]) -> str:
-    """The interface law of a beam run as a label: runs with the same label share one 2D solution."""
-    law = run["law"] if run["law"] == "elastic" else (f"elastoplastic-Y{run['Y']:g}" if run.get("Y") is not None
-                                                       else f"elastoplastic-psi{run['psi']:g}")
-    return f"m00={run['m00']:g}/{law}/E*={run['E_star']:.8g}"
+def law_key(run: BeamRun) -> str:
+    """The interface law of a beam run (:class:`~roughcontact.examples.beam.BeamRun`) as a label:
+    runs with the same label share one 2D solution (the workflow checks that they share the 2D
+    problem too, :func:`roughcontact.paper.plane_stress.plane_stress_beam`)."""
+    law = run.law if run.law == "elastic" else (f"elastoplastic-Y{run.Y:g}" if run.Y is not None
+                                                else f"elastoplastic-psi{run.psi:g}")
+    return f"m00={run.m00:g}/{law}/E*={run.E_star:.8g}"
 
 
-def anchored_beam_runs(runs: Mapping[str, Mapping[str, Any]], main_spec: Mapping[str, Any]) -> list[str]:
-    """The runs the 2D solution anchors: free sliding (the 2D code has no tangential law) on at
-    least the main mesh (the coarser study meshes are meant to be unconverged)."""
+def anchored_beam_runs(runs: Mapping[str, BeamRun], main_spec: Mapping[str, Any]) -> list[str]:
+    """The runs (name → :class:`~roughcontact.examples.beam.BeamRun`) the 2D solution anchors:
+    free sliding (the 2D code has no tangential law) on at least the main mesh (``main_spec``:
+    config.yaml ``fe.beam.spec``; the coarser study meshes are meant to be unconverged)."""
     return [name for name, run in runs.items()
-            if run["tangential"] == "free" and run["spec"]["n_x"] >= main_spec["n_x"]
-            and run["spec"]["n_z"] >= main_spec["n_z"]]
+            if run.tangential == "free" and run.spec.n_x >= main_spec["n_x"] and run.spec.n_z >= main_spec["n_z"]]
 
 
 def _check(scene, model, quantity, row, ok, detail, description, target, value, error, tol, why, unit="") -> Check:
@@ -61,18 +67,19 @@ def _check(scene, model, quantity, row, ok, detail, description, target, value, 
                  tolerance=float(tol), tolerance_why=" ".join(str(why).split()))
 
 
-def beam_anchor_checks(runs: Mapping[str, Mapping[str, Any]], data: Mapping[str, Any],
+def beam_anchor_checks(runs: Mapping[str, BeamRun], data: Mapping[str, Any],
                        reference: Mapping[str, Mapping[str, np.ndarray]], cfg: Mapping[str, Any]) -> list[Check]:
-    """Four checks per anchored run (``runs``: name → run config; ``data``: name → the run's
-    dataset, :meth:`roughcontact.examples.beam.BeamResult.to_dataset`): u_N at the centre and the end
-    and the largest deviation along the centre line against the 2D solution of its law
+    """Four checks per anchored run (``runs``: name → :class:`~roughcontact.examples.beam.BeamRun`;
+    ``data``: name → the run's dataset, :meth:`roughcontact.examples.beam.BeamResult.to_dataset`):
+    u_N at the centre and the end and the largest deviation along the centre line against the 2D
+    solution of its law
     (``reference[law_key(run)]``: x_mm, u_N_um, and error_centre_um, error_end_um, the 2D
     solution's change from a mesh half as fine), and |4 Σ w p_N − P|/P of the written points.
     ``cfg``: config ``fe_anchors.beam.tolerances`` (centre, end, profile, equilibrium)."""
     out = []
     for name, run in runs.items():
         ds, ref = data[name], reference[law_key(run)]
-        model, row = f"fe-{run['family']}", f"{run['case']}-{name.split('-', 2)[2]}"
+        model, row = f"fe-{run.family}", f"{run.case}-{name.split('-', 2)[2]}"
         x2, u2 = np.asarray(ref["x_mm"], dtype=float), np.asarray(ref["u_N_um"], dtype=float)
         for q, attr, at in (("u_N_centre", "u_N_centre_um", 0), ("u_N_end", "u_N_end_um", -1)):
             tol = cfg["centre" if at == 0 else "end"]
@@ -97,7 +104,7 @@ def beam_anchor_checks(runs: Mapping[str, Mapping[str, Any]], data: Mapping[str,
                           f"{100 * err:.3f} % of max |u_N| {'≤' if ok else '>'} {100 * tol['rtol']:g} %",
                           "u_N along the contact centre line (Fig. 13) against the 2D solution", 0.0, err, err,
                           tol["rtol"], tol["why"]))
-        load = float(run["spec"]["load"])
+        load = float(run.spec.load)
         carried = 4.0 * float(np.sum(ds["point_weight"].values * ds["point_p_N"].values))  # quarter model
         err = abs(carried - load) / load
         tol = cfg["equilibrium"]
@@ -121,10 +128,11 @@ def _mu_range(case: str) -> tuple[float, float]:
     return lo, hi
 
 
-def punch_anchor_checks(runs: Mapping[str, Mapping[str, Any]], data: Mapping[str, Any],
+def punch_anchor_checks(runs: Mapping[str, PunchRun], data: Mapping[str, Any],
                         bounds: Mapping[str, float], quarter_area: Mapping[str, float],
                         cfg: Mapping[str, Any], d_attr: str) -> list[Check]:
-    """Checks of every punch run from its dataset (:func:`roughcontact.examples.punch.to_dataset`):
+    """Checks of every punch run (name → :class:`~roughcontact.examples.punch.PunchRun`) from its
+    dataset (:func:`roughcontact.examples.punch.to_dataset`):
     equilibrium at every level (``quarter_area``: name → the quarter punch's top area [mm²]),
     the friction limit at every point and level, the reported D against the fields
     (``d_attr`` and its "end" twin), and D ≤ the frictionless bound (``bounds``: name → bound,
@@ -132,11 +140,11 @@ def punch_anchor_checks(runs: Mapping[str, Mapping[str, Any]], data: Mapping[str
     out = []
     for name, run in runs.items():
         ds = data[name]
-        model, row = f"fe-{run['geometry']['family']}", name.split("-", 1)[1]
+        model, row = f"fe-{run.family}", name.split("-", 1)[1]
         w = ds["point_weight"].values
         p = ds["p_N"].values  # (level, point)
         # 1. Σ w p_N = p0 A + P at every level
-        applied = float(run["seating_pressure"]) * quarter_area[name] + ds["load_quarter"].values
+        applied = float(run.spec.seating_pressure) * quarter_area[name] + ds["load_quarter"].values
         carried = p @ w
         err_levels = np.abs(carried - applied) / applied
         k = int(np.argmax(err_levels))
@@ -150,14 +158,14 @@ def punch_anchor_checks(runs: Mapping[str, Mapping[str, Any]], data: Mapping[str
         # 2. the friction limit
         t = np.hypot(ds["t_x"].values, ds["t_y"].values)
         tol = cfg["friction_limit"]
-        if run["case"] == "frictionless":
+        if run.case == "frictionless":
             worst = float(t.max())
             ok = worst <= tol["atol_frictionless"]
             out.append(_check(PUNCH_SCENE, model, "friction_limit", row, ok,
                               f"largest |t_T| without friction {worst:.1e} N/mm^2", "no tangential traction without "
                               "friction", 0.0, worst, worst, tol["atol_frictionless"], tol["why"], "N/mm^2"))
         else:
-            lo, hi = _mu_range(run["case"])
+            lo, hi = _mu_range(run.case)
             pos = p > 0.0
             over = float(np.max(np.where(pos, t / np.where(pos, hi * p, 1.0), 0.0))) - 1.0
             slip = (ds["status"].values == 1) & pos

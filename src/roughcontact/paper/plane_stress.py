@@ -7,9 +7,11 @@ family), so an error common to all runs — a wrong unit, a lost factor — woul
 solves the same problem with nothing of the engine: its own mesh, its own element (the 9-node
 biquadratic Lagrange quadrilateral, plane stress, 3 × 3 Gauss), its own assembly and its own
 Newton loop (numpy and scipy.sparse only; ``tests/paper/test_plane_stress.py`` checks that it
-imports nothing from ``roughcontact.fe``). What it shares with the engine is the physics it is
-given: the library's normal law (:class:`~roughcontact.interface.InterfaceLaw`), itself checked
-against direct integration and mpmath.
+imports nothing from ``roughcontact.fe`` or ``roughcontact.examples``). What it shares with the
+engine is the physics it is given: the library's normal law
+(:class:`~roughcontact.interface.InterfaceLaw`), itself checked against direct integration and
+mpmath, and the numbers of the run it solves again, read from the run's fields (duck-typed: a
+:class:`~roughcontact.examples.beam.BeamRun` or anything with its fields, never its deck).
 
 The problem (the engine's reading of example 9.1, :mod:`roughcontact.examples.beam`): a beam of length
 L, height H and width b (E, ν) on a rigid base through the statistical interface with free
@@ -35,8 +37,8 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from threadpoolctl import threadpool_limits
 
-__all__ = ["PlaneStressBeam", "PlaneStressResult", "solve_plane_stress_beam", "graded_edges", "beam_run_law",
-           "reference_solution"]
+__all__ = ["PlaneStressBeam", "PlaneStressResult", "solve_plane_stress_beam", "graded_edges", "plane_stress_beam",
+           "beam_run_law", "reference_solution"]
 
 #: 1-D quadratic Lagrange nodes and 3-point Gauss rule on [-1, 1]
 _GAUSS = (np.array([-np.sqrt(0.6), 0.0, np.sqrt(0.6)]), np.array([5.0, 8.0, 5.0]) / 9.0)
@@ -284,36 +286,48 @@ def _solve(beam, law, length_per_mm, force_rtol, max_iterations) -> PlaneStressR
                              seconds=time.perf_counter() - t0)
 
 
+def plane_stress_beam(run, n_x: int, n_z: int) -> PlaneStressBeam:
+    """The 2D problem of a beam run (its ``spec``'s length, height, width [mm], E, nu [N/mm²],
+    load and initial_load [N, full beam], increments and z_ratio; e.g. a
+    :class:`~roughcontact.examples.beam.BeamRun`) on an ``n_x`` × ``n_z`` mesh of the half beam.
+    The 3D mesh of the run (its n_x, n_z, elements, x_ratio) is not the 2D code's; a load patch
+    is not modelled here and is refused."""
+    spec = run.spec
+    if getattr(spec, "load_patch", 0.0):
+        raise ValueError("the 2D beam models the line load only, got a load patch of "
+                         f"{spec.load_patch!r} mm")
+    return PlaneStressBeam(length=spec.length, height=spec.height, width=spec.width, E=spec.E, nu=spec.nu,
+                           load=spec.load, initial_load=spec.initial_load, increments=spec.increments,
+                           z_ratio=spec.z_ratio, n_x=int(n_x), n_z=int(n_z))
+
+
 def beam_run_law(run, seating_pressure: float):
-    """The interface law of a beam run (the workflow's run dict: m00 [µm²], surface, law,
-    E_star [N/mm²], psi or Y) as an :class:`~roughcontact.interface.InterfaceLaw` seated at
-    ``seating_pressure``: the table over 1e-12 … 100 N/mm² at the "plot" accuracy, as the
-    engine's runs take it (:func:`roughcontact.fe.contact.statistical_interface`), built here
-    from the interface layer alone."""
+    """The interface law of a beam run (its fields m00 [µm²], surface (the other moments, a
+    mapping or (name, value) pairs), law, E_star [N/mm²], psi or Y; e.g. a
+    :class:`~roughcontact.examples.beam.BeamRun`) as an
+    :class:`~roughcontact.interface.InterfaceLaw` seated at ``seating_pressure``: the table over
+    1e-12 … 100 N/mm² at the "plot" accuracy, as the engine's runs take it
+    (:data:`roughcontact.examples.beam.PRESSURE_RANGE`), built here from the interface layer alone."""
     from ..contact import resolve_material
     from ..interface import InterfaceLaw, NormalLawTable
     from ..statistics import SpectralMoments
 
-    surface = SpectralMoments(m00=run["m00"], **run["surface"])
-    if run["law"] == "elastic":
-        law = {"E_star": run["E_star"]}
+    surface = SpectralMoments(m00=run.m00, **dict(run.surface))
+    if run.law == "elastic":
+        law = {"E_star": run.E_star}
     else:
-        by = {"Y": run["Y"]} if run.get("Y") is not None else {"psi": run["psi"]}
-        law = {"material": resolve_material(surface, E_star=run["E_star"], **by)}
-    table = NormalLawTable.build(surface, run["law"], pressure_range=(1e-12, 100.0), accuracy="plot", **law)
+        by = {"Y": run.Y} if getattr(run, "Y", None) is not None else {"psi": run.psi}
+        law = {"material": resolve_material(surface, E_star=run.E_star, **by)}
+    table = NormalLawTable.build(surface, run.law, pressure_range=(1e-12, 100.0), accuracy="plot", **law)
     return InterfaceLaw.from_pressure(table, seating_pressure)
 
 
-def reference_solution(run, geometry, mesh, coarse_mesh) -> dict:
-    """The 2D solution of a beam run on ``mesh`` (n_x, n_z) and its change from ``coarse_mesh``
-    at the centre and the end (an estimate of its discretisation error): x_mm, u_N_um, p_N,
-    u_N_centre_um, u_N_end_um, error_centre_um, error_end_um, dofs, seconds, newton_iterations.
-    ``geometry``: the beam's length, height, width, E, nu [mm, N/mm²]; the run's spec gives the
-    loads, increments and the z grading."""
-    spec = run["spec"]
-    common = dict(geometry, load=spec["load"], initial_load=spec["initial_load"], increments=spec["increments"],
-                  z_ratio=spec.get("z_ratio", 4.0))
-    fine, coarse = (PlaneStressBeam(**common, n_x=int(m[0]), n_z=int(m[1])) for m in (mesh, coarse_mesh))
+def reference_solution(run, mesh, coarse_mesh) -> dict:
+    """The 2D solution of a beam run (:func:`plane_stress_beam`, :func:`beam_run_law`) on ``mesh``
+    (n_x, n_z) and its change from ``coarse_mesh`` at the centre and the end (an estimate of its
+    discretisation error): x_mm, u_N_um, p_N, u_N_centre_um, u_N_end_um, error_centre_um,
+    error_end_um, dofs, seconds, newton_iterations, equilibrium_error."""
+    fine, coarse = (plane_stress_beam(run, *m) for m in (mesh, coarse_mesh))
     law = beam_run_law(run, fine.seating_pressure)
     r, c = solve_plane_stress_beam(fine, law), solve_plane_stress_beam(coarse, law)
     return {"x_mm": r.x_mm, "u_N_um": r.u_N_um, "p_N": r.p_N, "u_N_centre_um": r.u_N_centre_um,
