@@ -328,6 +328,20 @@ def test_bem_without_the_extra_says_skipped_in_one_line(tmp_path):
     assert "bem_run" not in r.stdout and "bem_report" not in r.stdout
 
 
+def test_verify_after_a_ci_scale_bem_does_not_run_the_full_bem(tmp_path):
+    """CI runs `snakemake bem --config bem_scale=ci`, then `verify`: the BEM report (present) is
+    read as it is, not rebuilt at the configured (full) scale, which ran the full BEM inside
+    CI's verify."""
+    clone = fresh_clone(tmp_path)
+    (clone / "paper_figures").mkdir(exist_ok=True)
+    (clone / "paper_figures" / "bem.md").write_text("# BEM\n")
+    (clone / "results" / "verify").mkdir(parents=True, exist_ok=True)
+    (clone / "results" / "verify" / "bem.checks.csv").write_text("")
+    r = snakemake(clone, "-n", "verify")
+    assert r.returncode == 0, r.stderr
+    assert "bem_run" not in r.stdout and "bem_report" not in r.stdout
+
+
 def test_bad_bem_scale_is_refused(tmp_path):
     clone = fresh_clone(tmp_path)
     r = snakemake(clone, "-n", "bem", "--config", "bem_scale=huge")

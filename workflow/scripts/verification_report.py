@@ -79,4 +79,4 @@ if "snakemake" in globals():
     sm = snakemake  # noqa: F821
     run(list(sm.input.checks), sm.input.speed, sm.input.fe_speed, sm.input.calculix, sm.input.expected, list(sm.input.errata), sm.params.scene_titles,
         sm.params.reference_dps, {"md": sm.output.md, "csv": sm.output.csv, "summary": sm.output.summary},
-        sm.log[0], list(sm.input.bem))
+        sm.log[0], list(sm.params.bem))
