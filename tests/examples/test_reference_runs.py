@@ -1,5 +1,6 @@
 """One engine path: the beam and the punch as decks through the reader and the solver give the
-results of commit 6539136 (before they were decks), to 1e-9. The references were computed by
+results of commit 6539136 (before they were decks), to 1e-9 (the elasto-plastic runs to their
+law's stated accuracy, EP_RTOL: issue 24 changed how that law is integrated). The references were computed by
 that commit's own code (tests/examples/data/capture_6539136.py, provenance in the file): per run
 the deflections, pressures and tractions (beam), the whole history of every contact point and
 the dissipation under every reading (punch). Points are matched by their coordinates.
@@ -26,6 +27,12 @@ from roughcontact.examples.punch_geometry import PunchGeometry
 
 DATA = json.loads((Path(__file__).with_name("data") / "reference_6539136.json").read_text())
 RTOL = 1e-9  # the issue's "today's results to 1e-9"; measured <= 3.9e-13 (after the robust Newton merge)
+#: the elasto-plastic law's table is built by issue 24's τ = r t integrals since the capture: at the
+#: FE's "plot" accuracy it and 6539136's are each within 1e-8 of the exact law, and they differ by
+#: up to 7.3e-10 relative (the punch's law, q and q' at the table's nodes, computed with both
+#: revisions). So the elasto-plastic runs are compared at the law's stated bound; the elastic runs
+#: (their law unchanged) at the issue's 1e-9. Measured: punch c (secant) 1.7e-9 of its largest slip.
+EP_RTOL = 1e-8
 SLOW = {"beam-quadratic-1-main", "punch-quadratic-b-main"}
 #: runs whose first load increment 6539136 cut back, with a path-dependent law
 OLD_PATH = {"beam-quadratic-3-stick-patch", "punch-quadratic-b-quarter", "punch-quadratic-a-patch-start"}
@@ -59,10 +66,14 @@ def _params(kind):
             for name, r in DATA["runs"].items() if r["kind"] == kind]
 
 
-def _close(new, old, what):
+def _close(new, old, what, rtol=RTOL):
     old = np.asarray(old, dtype=float)
     scale = max(float(np.abs(old).max()), 1e-300)
-    np.testing.assert_allclose(new, old, rtol=0, atol=RTOL * scale, err_msg=what)
+    np.testing.assert_allclose(new, old, rtol=0, atol=rtol * scale, err_msg=what)
+
+
+def _rtol(old_run) -> float:
+    return EP_RTOL if old_run["law"] == "elastoplastic" else RTOL
 
 
 def test_provenance():
@@ -81,16 +92,17 @@ def test_beam_as_a_deck_gives_the_old_results(name, engine_path):
     res = run_beam(run, options=options)
     assert (res.n_dofs, res.n_points) == (r["dofs"], r["interface_points"])
     assert _iterations_agree(name, res.newton_iterations.tolist(), r["newton_iterations"])
+    tol = _rtol(old)
     _close(res.x_mm, r["x_mm"], "x")
-    _close(res.u_N_um, r["u_N_um"], "u_N")
-    _close(res.p_N, r["p_N"], "p_N")
+    _close(res.u_N_um, r["u_N_um"], "u_N", tol)
+    _close(res.p_N, r["p_N"], "p_N", tol)
     np.testing.assert_allclose(res.open_x_mm, r["open_x_mm"])
     f = res.point_fields()
     new_order = np.lexsort((np.round(f["x"][:, 1], 9), np.round(f["x"][:, 0], 9)))
     old_order = np.lexsort((np.round(r["point_y"], 9), np.round(r["point_x"], 9)))
     for key, new in (("point_u_N_um", f["u_N_um"]), ("point_p_N", f["p_N"]), ("point_t_x", f["t_x"]),
                      ("point_t_y", f["t_y"])):
-        _close(new[new_order], np.asarray(r[key])[old_order], key)
+        _close(new[new_order], np.asarray(r[key])[old_order], key, tol)
     np.testing.assert_array_equal(f["status"][new_order], np.asarray(r["point_status"])[old_order])
     assert res.equilibrium_error < 1e-10
 
@@ -114,13 +126,14 @@ def test_punch_as_a_deck_gives_the_old_results(name, engine_path):
     x = res.points.x
     new_order = np.lexsort((np.round(x[:, 1], 9), np.round(x[:, 0], 9)))
     old_order = np.lexsort((np.round(r["y"], 9), np.round(r["x"], 9)))
+    tol = _rtol(old)
     for key in ("t_x", "t_y", "p_N", "slip_x_um", "slip_y_um", "jump_x_um", "jump_y_um"):
-        _close(h[key][kept][:, new_order], np.asarray(r[key])[:, old_order], key)
+        _close(h[key][kept][:, new_order], np.asarray(r[key])[:, old_order], key, tol)
     np.testing.assert_array_equal(h["status"][kept][:, new_order], np.asarray(r["status"])[:, old_order])
     for key, value in r["D"].items():
         at, weight = key.split("_")
-        assert dissipation(res, at=at, weight=weight) == pytest.approx(value, rel=RTOL, abs=1e-300), key
+        assert dissipation(res, at=at, weight=weight) == pytest.approx(value, rel=tol, abs=1e-300), key
     # the bound changed on purpose (issue 22: from the unloaded start, not the seated state): it
     # can only grow by the seating's own relative displacement
     free = run_punch(run.with_(case="frictionless"), options=options)
-    assert frictionless_bound(res, free, mu_max(old["case"])) >= r["bound"] * (1 - RTOL)
+    assert frictionless_bound(res, free, mu_max(old["case"])) >= r["bound"] * (1 - tol)

@@ -72,7 +72,8 @@ def test_figure_draws_every_grid():
 
 def test_coverage_of_a_scene_with_its_own_target():
     data = {"expected_checks": {"bem": {"checks": 2, "target": "bem"}}}
-    assert verify.check_coverage([], data)["skipped"] == [{"scene": "bem", "requires": "target bem"}]
+    assert verify.check_coverage([], data)["skipped"] == [{"scene": "bem", "requires": "target bem", "checks": 2,
+                                                                    "install": "snakemake bem"}]
     one = verify.Check(id="numerics:bem/x/size/n=256", kind="numerics", scene="bem", verdict="reproduced", detail="")
     assert verify.check_coverage([one], data)["missing"] == [{"scene": "bem", "expected": 2, "found": 1}]
     assert verify.check_coverage([one] * 5, data) == {"missing": [], "skipped": [], "unexpected": []}

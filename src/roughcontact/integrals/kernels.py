@@ -745,12 +745,12 @@ def _tau_of_mass(g, l):
 
 
 @numba.njit(cache=True)
-def _log_normal_moment(x, nu, jt):
-    """ln J_ν(x), ν = 0 or 1, from the normal-moment tables (_moments; for x < 0 scaled by
+def _log_normal_moments(x, jt):
+    """(ln J_0(x), ln J_1(x)) from the normal-moment tables (_moments; for x < 0 scaled by
     e^{x²/2}, so nothing underflows or cancels: J_1 = x Φ + φ loses digits for x ≪ 0)."""
     e = 0.5 * x * x if x < 0.0 else 0.0
     j0, _, j1, _ = _moments(x, e, jt)
-    return math.log(j0 if nu == 0 else j1) - e
+    return math.log(j0) - e, math.log(j1) - e
 
 
 @numba.njit(cache=True)
@@ -762,7 +762,8 @@ def _hyperbola_at_zero(g, l, jt):
     sq = math.sqrt(q)
     x = l * g / sq
     base = -0.5 * l * l / q
-    return base + _log_normal_moment(x, 0, jt) - math.log(sq), base + _log_normal_moment(x, 1, jt) - math.log(q)
+    lj0, lj1 = _log_normal_moments(x, jt)
+    return base + lj0 - math.log(sq), base + lj1 - math.log(q)
 
 
 @numba.njit(cache=True)
@@ -874,6 +875,10 @@ def _grid_panels(l, g_hi, g_lo, s_lo, s_mid, s_hi, width, d, tol, h0, cw, shift,
     tmp = np.empty(d + 1)
     coef = np.empty(d + 1)
     half = d // 2
+    # the steps as int64 variables, not literals: a literal argument compiles a signature of its
+    # own (Literal[int](2)), and one kernel must keep one key in numba's shared cache
+    one = np.int64(1)
+    two = np.int64(2)
     P = 0
     ok = True
     edges[0] = s_lo
@@ -881,11 +886,11 @@ def _grid_panels(l, g_hi, g_lo, s_lo, s_mid, s_hi, width, d, tol, h0, cw, shift,
         top -= 1
         a = stack_a[top]
         b = stack_b[top]
-        _panel_values(l, g_hi, a, b, d, 2, h0, cw, shift, vh)
-        _panel_values(l, g_lo, a, b, d, 2, h0, cw, shift, vl)
+        _panel_values(l, g_hi, a, b, d, two, h0, cw, shift, vh)
+        _panel_values(l, g_lo, a, b, d, two, h0, cw, shift, vl)
         info[0] += 2 * (half + 1)
         n = half
-        if max(_panel_tail(vh, half, 2, tmp, coef), _panel_tail(vl, half, 2, tmp, coef)) > tol:
+        if max(_panel_tail(vh, half, two, tmp, coef), _panel_tail(vl, half, two, tmp, coef)) > tol:
             for k in range(1, d, 2):  # the odd points: degree d
                 s = 0.5 * (a + b) + 0.5 * (b - a) * math.cos(math.pi * k / d)
                 v0, v1 = _hyperbola_moments(math.exp(s), g_hi, l, h0, cw)
@@ -896,7 +901,7 @@ def _grid_panels(l, g_hi, g_lo, s_lo, s_mid, s_hi, width, d, tol, h0, cw, shift,
                 vl[k, 1] = v1 + shift
             info[0] += 2 * half
             n = d
-            if max(_panel_tail(vh, d, 1, tmp, coef), _panel_tail(vl, d, 1, tmp, coef)) > tol:
+            if max(_panel_tail(vh, d, one, tmp, coef), _panel_tail(vl, d, one, tmp, coef)) > tol:
                 if P + top + 2 <= _GRID_MAX_PANELS:
                     m = 0.5 * (a + b)
                     stack_a[top] = m
