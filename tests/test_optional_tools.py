@@ -145,6 +145,7 @@ def test_every_command_runs_without_the_workflow_extra(tmp_path):
 
 
 @pytest.mark.slow
+@pytest.mark.venv_install
 def test_library_only_install_in_a_fresh_venv(tmp_path):
     """`pip install .` (no extras) into a new venv, for real: every module of the package imports
     and the command runs, with neither snakemake nor matplotlib there. (Every command's run
@@ -276,6 +277,7 @@ def test_wall_time_record_includes_creating_the_venv(tmp_path, monkeypatch):
 
 
 @pytest.mark.slow
+@pytest.mark.venv_install
 @pytest.mark.parametrize("version", ["3.12", "3.13"])
 def test_installs_and_runs_on_newer_python(tmp_path, version):
     """`make venv` with Python 3.12 / 3.13 (pyenv's, where installed), then a cross-section of
