@@ -165,6 +165,7 @@ TWIN_CASES = {
 
 
 @pytest.mark.mpmath
+@pytest.mark.ep_twin
 @pytest.mark.parametrize("case", list(TWIN_CASES))
 def test_production_matches_slow_twin(case):
     """Measured: ≤ 5e-12 relative on totals and on parts above 1e-3 of their total."""
@@ -186,6 +187,7 @@ def test_production_matches_slow_twin_coarse():
 
 
 @pytest.mark.mpmath
+@pytest.mark.ep_twin
 def test_method_reference_is_the_twin():
     mat = material(1.0)
     ref = elastoplastic_contact(FIG, [2.0], mat, method="reference")
@@ -205,6 +207,7 @@ def test_table_preset_has_converged_quick():
 
 
 @pytest.mark.mpmath
+@pytest.mark.ep_twin
 @pytest.mark.parametrize("psi", [0.05, 1.0, 50.0])
 def test_table_preset_has_converged(psi):
     s = np.array([-1.0, 0.0, 2.0, 6.0])

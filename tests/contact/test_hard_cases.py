@@ -226,6 +226,7 @@ EP_REF_CASES = [("aniso_1e4_y", 0.05, 1.0), ("alpha_2.2", 50.0, 2.0), ("alpha_2.
 
 
 @pytest.mark.mpmath
+@pytest.mark.ep_twin
 @pytest.mark.parametrize("name, psi, s", EP_REF_CASES)
 def test_elastoplastic_hard_cases_match_the_twin(name, psi, s):
     """Production ("table") against the scipy twin at rtol 1e-10: totals ≤ 1e-8."""
@@ -239,6 +240,7 @@ def test_elastoplastic_hard_cases_match_the_twin(name, psi, s):
 
 
 @pytest.mark.mpmath
+@pytest.mark.ep_twin
 def test_heavy_load_stiffness_rise_is_in_the_twin_too():
     """The twin (rtol 1e-8) sees the same rise from s = −2 to −1.5: measured 4.4e-7 relative,
     over 40× its tolerance, and production agrees with it point by point."""
