@@ -132,13 +132,21 @@ def test_every_command_runs_without_the_workflow_extra(tmp_path):
     from roughcontact.cli import build_parser
 
     commands = build_parser()._subparsers._group_actions[0].choices
-    covered = {name.split()[0] for name in COMMANDS}
+    covered = {name.split()[0] for name in COMMANDS} | {"plot"}  # plot draws: below
     assert set(commands) <= covered, f"add a run of {set(commands) - covered} to COMMANDS"
     path = _height_map(tmp_path)
+    outputs = {}
     for name, args in COMMANDS.items():
         r = _cli([a.replace("{map}", str(path)) for a in args], prelude=HIDE_EXTRAS)
         assert r.returncode == 0, (name, r.stderr[-2000:])
         assert json.loads(r.stdout), name
+        outputs[name] = r.stdout
+    # `plot` is the one command that needs matplotlib: without it, one line naming the install
+    result = tmp_path / "elastic.json"
+    result.write_text(outputs["elastic"])
+    r = _cli(["plot", str(result), "-o", str(tmp_path / "fig.png")], prelude=HIDE_EXTRAS)
+    assert r.returncode == 2 and len(r.stderr.strip().splitlines()) == 1, r.stderr[-2000:]
+    assert "pip install '.[workflow]'" in r.stderr and not (tmp_path / "fig.png").exists()
 
 
 # matplotlib absent: one line naming the install, tests/plots/test_plots.py::test_without_matplotlib_one_line

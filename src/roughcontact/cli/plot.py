@@ -6,7 +6,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-from . import CLIError
+from . import CLIError, output_file
 
 __all__ = ["add_command"]
 
@@ -19,7 +19,8 @@ def add_command(sub, parents) -> None:
         "nominal pressure, one panel each, every RESULT (JSON written by roughcontact elastic/elastoplastic "
         "--json) overlaid. Needs matplotlib (the workflow extra).")
     p.add_argument("results", nargs="+", metavar="RESULT.json", help="results of roughcontact elastic/elastoplastic --json")
-    p.add_argument("-o", "--output", required=True, metavar="FILE", help="the figure: .png, .pdf or .svg")
+    p.add_argument("-o", "--output", type=output_file, required=True, metavar="FILE",
+                   help="the figure: .png, .pdf or .svg")
     p.add_argument("--x", dest="x", choices=("separation", "pressure"), default="separation",
                    help="abscissa: the separation s = h/sqrt(m00) (default) or the nominal pressure")
     p.add_argument("--label", dest="labels", action="append", default=None, metavar="TEXT",
@@ -59,7 +60,7 @@ def _run_plot(args) -> dict[str, Any]:
     except ImportError as exc:
         raise CLIError(str(exc)) from None
     save_figure(fig, args.output)
-    return {"output": args.output, "results": list(args.results), "labels": labels, "x": args.x,
+    return {"output": str(args.output), "results": list(args.results), "labels": labels, "x": args.x,
             "length_unit": length, "stress_unit": args.stress_unit}
 
 
