@@ -20,7 +20,9 @@ PYTHON ?= $(shell for p in python3.11 python3.12 python3.13 python3; do \
 	command -v $$p >/dev/null 2>&1 && $$p -c 'import sys; sys.exit(sys.version_info < (3, 11))' 2>/dev/null \
 	&& { command -v $$p; break; }; done)
 CORES  ?= all
-# pytest workers (pytest-xdist): the tests are independent; "auto" = one per core
+# pytest workers (pytest-xdist): the tests are independent; "auto" = one per core; --dist worksteal:
+# an idle worker takes tests queued for a busy one (a few tests run ~1 min: the static split left
+# one worker idle at the end)
 WORKERS ?= auto
 SNAKEMAKE := $(BIN)/snakemake --workflow-profile workflow/profiles/default --cores $(CORES)
 # Re-install only when the package metadata changes (the install is editable: source edits
@@ -72,11 +74,18 @@ bench-fe: $(STAMP)
 	$(PY) benchmarks/fe_linear_solvers.py
 
 # pyproject.toml deselects the mpmath- and slow-marked tests by default ("fast by default")
+# numba's on-disk cache filled before the workers start (roughcontact.warmup: on a fresh clone
+# ~55 s in two processes; each pytest worker would otherwise compile the same kernels, ~70 s
+# each; with a warm cache ~3 s)
+WARM := $(PY) -m roughcontact.warmup --jobs 2
+
 test: $(STAMP)
-	$(PY) -m pytest -n $(WORKERS)
+	$(WARM)
+	$(PY) -m pytest -n $(WORKERS) --dist worksteal
 
 test-slow: $(STAMP)
-	$(PY) -m pytest -n $(WORKERS) -m "mpmath or slow"
+	$(WARM)
+	$(PY) -m pytest -n $(WORKERS) --dist worksteal -m "mpmath or slow"
 
 # the slow tier as CI runs it (20-minute budget): without the tests that build whole new
 # environments (venv_install: a library-only `pip install .`, Python 3.12/3.13; CI's own `make`
@@ -84,10 +93,12 @@ test-slow: $(STAMP)
 # rtol 1e-10 (ep_twin: minutes each; CI checks the same kernels in the gate's ep_numerics scene
 # and the fast tier's coarse twin test); `make test-slow` runs them all
 test-slow-ci: $(STAMP)
-	$(PY) -m pytest -n $(WORKERS) -m "(mpmath or slow) and not venv_install and not ep_twin"
+	$(WARM)
+	$(PY) -m pytest -n $(WORKERS) --dist worksteal -m "(mpmath or slow) and not venv_install and not ep_twin"
 
 test-all: $(STAMP)
-	$(PY) -m pytest -n $(WORKERS) -m ""
+	$(WARM)
+	$(PY) -m pytest -n $(WORKERS) --dist worksteal -m ""
 
 # the SLURM tier: a one-node cluster (munged, slurmctld, slurmd as root) started by the test;
 # skips with one line where it cannot start (docs/sweeps.rst)

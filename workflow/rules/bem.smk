@@ -19,9 +19,12 @@ BEM_REPORT_SOURCES = (PHYSICS_SOURCES + REPORT_SOURCES
                       + library_sources("bem/compare.py", "paper/bem.py", "statistics/summits.py"))
 
 
-from roughcontact.bem.solver import available as _bem_available
+def bem_available():
+    """Whether the extra [bem] imports: asked only when a job of the target bem is planned
+    (importing ContactMechanics costs ~1 s, which every other invocation would pay)."""
+    from roughcontact.bem.solver import available
 
-BEM_AVAILABLE = _bem_available()
+    return available()
 
 
 def bem_runs():
@@ -53,10 +56,10 @@ rule bem:
     """The BEM comparison: summary, figure, the "where the model holds" report and the BEM's
     closed-form checks (or one line saying why it was skipped)."""
     input:
-        BEM_OUTPUTS if BEM_AVAILABLE else [],
+        lambda w: BEM_OUTPUTS if bem_available() else [],
     localrule: True
     params:
-        available=BEM_AVAILABLE,
+        available=lambda w: bem_available(),
     run:
         from roughcontact.bem.solver import SKIP_MESSAGE
 

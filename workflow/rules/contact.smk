@@ -17,8 +17,9 @@ rule numba_warmup:
         "logs/numba_warmup.log",
     benchmark:
         "results/benchmarks/rules/numba_warmup.tsv"
+    threads: 2  # its two parts in two processes (roughcontact.warmup); scaled down to --cores 1
     shell:
-        "python -c 'from roughcontact.warmup import warm_up; warm_up()' > {log} 2>&1"
+        "python -m roughcontact.warmup --jobs {threads} > {log} 2>&1"
 
 
 rule reference:
