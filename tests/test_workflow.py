@@ -262,9 +262,11 @@ def test_slurm_profile_plans_the_sweep_jobs(tmp_path):
 
 
 @pytest.mark.slow
+@pytest.mark.ci_elsewhere
 def test_sweep_dispatched_through_generic_cluster_executor(tmp_path):
     """Each sweep part goes through the submit script (as through sbatch) and the merged
-    sweep equals a direct evaluation."""
+    sweep equals a direct evaluation. CI (ci_elsewhere): the SLURM tier submits the same
+    sweep's parts to a real scheduler (tests/test_slurm.py)."""
     import numpy as np
 
     from roughcontact import io

@@ -20,8 +20,9 @@ import numpy as np
 
 from .asperity import AsperityMaterial
 from .contact import elastic_contact, elastoplastic_contact
-from .integrals.production import PARALLEL_MIN, asperity_law, elastic_inner_integrals
-from .interface import friction
+from .integrals.production import (PARALLEL_MIN, asperity_law, elastic_inner_integrals, hyperbola_grid_values,
+                                   hyperbola_moments, hyperbola_moments_at_zero)
+from .interface import InterfaceLaw, NormalLawTable, friction
 from .statistics import SpectralMoments
 
 __all__ = ["PARTS", "warm_up", "main"]
@@ -38,6 +39,10 @@ def _elastoplastic() -> None:
     for s in _SEPARATIONS:
         # compiling, not computing results: no range-of-validity warnings (s = 0 is heavy load)
         elastoplastic_contact(_SURFACE, s, AsperityMaterial(1.0, 1e-3), accuracy="plot", validity="off")
+    # the summit measure on the hyperbolas r t = τ, as the tests call it
+    hyperbola_moments([0.5], [1.0], [0.0])
+    hyperbola_moments_at_zero([1.0], [0.0])
+    hyperbola_grid_values(0.0, (0.5, 2.0), [0.5], [1.0])
 
 
 def _the_rest() -> None:
@@ -48,8 +53,11 @@ def _the_rest() -> None:
     asperity_law([1e-3], 2.0, 1.0, 1.0, 1.0, 1e-3, 1.0, 45.0, 1.0, 0.3)
     state = friction.initial_state(1, u_N=1.0, k_N=1.0)
     for model in (friction.OrthotropicHardening(0.5, 0.5, 0.5, 0.5, 1.0, 1.0),
-                  friction.IsotropicHardening(0.5, 0.5, 1.0)):
+                  friction.IsotropicHardening(0.5, 0.5, 1.0), friction.Frictionless()):
         friction.update(model, state, [[1.0, 0.5, 0.1]], 1.0, 1.0, 1.0)
+    # a tabulated normal law (the FE engine's): its closure-law kernel
+    table = NormalLawTable.build(_SURFACE, "elastic", E_star=1.0, s_range=(1.5, 4.5), accuracy="plot")
+    InterfaceLaw.from_pressure(table, 1e-6).normal([0.0])
 
 
 #: the parts, each a callable that runs its kernels on tiny inputs

@@ -158,12 +158,15 @@ def test_polar_count_and_bearing_equal_cartesian_uv():
 # (c) polar form = the original Cartesian triple integral (53)
 # ---------------------------------------------------------------------------------------
 @pytest.mark.mpmath
+@pytest.mark.ci_elsewhere
 def test_polar_load_equals_cartesian_triple_integral():
     """(53) without its prefactor, ∫_l^∞dω1 ∫_0^∞dω4 ∫_0^∞dω6 f2 (ω1 − l)^{3/2} κm^{−1/2} p_sum,
     with κm = √μ(√m40 ω4 + √m04 ω6)/2 (13), (43), p_sum = surface.summit_pdf (18 corrected)
     and f2 from the reference helpers (paper numerics: cheap per point, with kinks on three
     rays, given to scipy as break points). ω4, ω6 by adaptive scipy quadrature; ω1 = l + y²
-    by 2×80-point Gauss–Legendre in y (the (ω1 − l)^{3/2} end point made smooth)."""
+    by 2×80-point Gauss–Legendre in y (the (ω1 − l)^{3/2} end point made smooth).
+    CI (ci_elsewhere): the same identity for the count and the bearing area,
+    test_polar_count_and_bearing_equal_cartesian_uv."""
     from scipy import integrate
 
     S = SKEW
@@ -235,10 +238,13 @@ def test_dps20_agrees_with_dps30():
 
 
 @pytest.mark.mpmath
+@pytest.mark.ci_elsewhere
 def test_plain_nested_quadrature_with_other_splits_agrees():
     """The default (Chebyshev interpolation of the inner integral in g) against the plain
     nested quadrature (an inner tanh-sinh per θ node) with extra θ/ψ split points and more
-    tanh-sinh levels allowed (at dps=16 to keep it quick); and dps=12 (the CI mode)."""
+    tanh-sinh levels allowed (at dps=16 to keep it quick); and dps=12 (the CI mode).
+    CI (ci_elsewhere): the smallest precision (8) against 20 in tests/contact/test_reference_dps.py, and the
+    production integrals against the dps-12 reference at every table cell in the gate."""
     l = float(TABLE1.l_from_s(2.5))
     q = ("area", "load", "stiffness")
     ref = R.elastic_integrals(TABLE1, l, hertz="exact", dps=20, quantities=q)
