@@ -149,6 +149,15 @@ def _real(text: str, where: str, what: str) -> float:
     return value
 
 
+def _face_number(line, prefix: str, message: str) -> int:
+    """The face k of a data line's second field ``<prefix>k`` (S1 ... S6 of *SURFACE, P1 ... P6
+    of *DLOAD: the CalculiX face numbering), else DeckError(message)."""
+    label = line.fields[1].upper()
+    if label not in {f"{prefix}{k}" for k in range(1, 7)}:
+        raise DeckError(line.where, message)
+    return int(label[1])
+
+
 class _Reader:
     """Walks the blocks once, keeping the definitions in order (a name must be defined before
     it is used, as CalculiX requires)."""
@@ -296,10 +305,8 @@ class _Reader:
         for line in kw.data:
             if len(line.fields) != 2:
                 raise DeckError(line.where, "*SURFACE data: element or elset, S1 ... S6")
-            label = line.fields[1].upper()
-            if label not in {f"S{k}" for k in range(1, 7)}:
-                raise DeckError(line.where, f"face {line.fields[1]!r} is not one of S1 ... S6")
-            faces += [(eid, int(label[1])) for eid in self._element_refs(line.fields[0], line.where)]
+            face = _face_number(line, "S", f"face {line.fields[1]!r} is not one of S1 ... S6")
+            faces += [(eid, face) for eid in self._element_refs(line.fields[0], line.where)]
         self.where[("surface", name)] = kw.where
 
     def material(self, kw):
@@ -412,13 +419,11 @@ class _Reader:
         for line in kw.data:
             if len(line.fields) != 3:
                 raise DeckError(line.where, "*DLOAD data: element or elset, P1 ... P6, pressure")
-            label = line.fields[1].upper()
-            if label not in {f"P{k}" for k in range(1, 7)}:
-                raise DeckError(line.where, f"load type {line.fields[1]!r}: only face pressures P1 ... P6")
+            face = _face_number(line, "P", f"load type {line.fields[1]!r}: only face pressures P1 ... P6")
             value = _real(line.fields[2], line.where, "the pressure")
             for eid in self._element_refs(line.fields[0], line.where):
-                target[(eid, int(label[1]))] = value
-                self.where[("dload", eid, int(label[1]))] = line.where
+                target[(eid, face)] = value
+                self.where[("dload", eid, face)] = line.where
 
     def step(self, kw):
         if self.step_open is not None:
