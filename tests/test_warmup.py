@@ -1,4 +1,5 @@
-"""roughcontact.warmup: its parts cover the kernels, and its command line runs them."""
+"""roughcontact.warmup: its parts run in this process, its command line runs them in two
+processes, and it refuses bad arguments."""
 
 import subprocess
 import sys
