@@ -54,7 +54,7 @@ $(STAMP): pyproject.toml tools/install_env.py | $(PY)
 
 venv: $(STAMP)
 
-# The package's bytecode is written first: where PYTHONDONTWRITEBYTECODE is set (CI, containers)
+# The package's bytecode is written first: where PYTHONDONTWRITEBYTECODE is set (containers)
 # no import writes it, and every process compiled src/ again (~0.5 s each; the installer
 # compiles the dependencies, tools/install_env.py); up to date, this takes 0.2 s
 BYTECODE := $(PY) -m compileall -q -j 0 src
@@ -96,7 +96,7 @@ test-slow: $(STAMP)
 # environments (venv_install: a library-only `pip install .`, Python 3.12/3.13; CI's own `make`
 # builds an environment from scratch on every run) and the elasto-plastic twin comparisons at
 # rtol 1e-10 (ep_twin: minutes each; CI checks the same kernels in the gate's ep_numerics scene
-# and the fast tier's coarse twin test) and three tests of 30-50 s whose subject CI checks in
+# and the fast tier's coarse twin test) and three tests of 26-48 s whose subject CI checks in
 # another form (ci_elsewhere, named in each docstring); `make test-slow` runs them all
 test-slow-ci: $(STAMP)
 	$(WARM)

@@ -295,12 +295,11 @@ def markdown(results: dict) -> str:
             for name, v in checks.items():
                 lines.append(f"| {point} | {name} | {v:.1e} |")
     c = results.get("compile")
+    lines += ["", "## numba: compile time against run time", ""]
     if not c:
-        lines += ["", "## numba: compile time against run time", "",
-                  "Not measured in this run (`--no-compile-probe`; the workflow's benchmark_mode \"ci\")."]
+        lines.append("Not measured in this run (`--no-compile-probe`; the workflow's benchmark_mode \"ci\").")
     else:
-        lines += ["", "## numba: compile time against run time", "",
-                  "Two fresh processes sharing an empty NUMBA_CACHE_DIR; the first compiles and writes the "
+        lines += ["Two fresh processes sharing an empty NUMBA_CACHE_DIR; the first compiles and writes the "
                   "cache, the second loads it. *first* calls include the one-off θ-node set-up of the "
                   "surface (Hertz inversion) as well.", "",
                   "| call | cold cache | warm cache |", "| --- | --- | --- |"]

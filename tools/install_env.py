@@ -102,7 +102,7 @@ def install(python: str, spec: str, installer: str = "auto") -> str:
         if uv.exists() or _run([python, "-m", "pip", "install", "--quiet", "uv"]) == 0:
             args, env = uv_arguments(pip_config(python))
             # --compile-bytecode: pip writes the packages' .pyc at install, uv does not; where
-            # PYTHONDONTWRITEBYTECODE is set (CI, containers) no .pyc was ever written and every
+            # PYTHONDONTWRITEBYTECODE is set (containers) no .pyc was ever written and every
             # process compiled scipy, xarray, numba ... from source again (~4.5 s each)
             if _run([str(uv), "pip", "install", "--python", python, *args, "--compile-bytecode", "--editable", spec],
                     env) == 0:
