@@ -1,5 +1,5 @@
 """``python -m roughcontact``: the command line (:mod:`roughcontact.cli`)."""
 
-from .cli import main
+from .cli import entry_point
 
-raise SystemExit(main())
+raise SystemExit(entry_point())

@@ -94,6 +94,22 @@ def test_prescribed_top_displacement_gives_back_the_pressure(patch_runs, tmp_pat
     np.testing.assert_allclose(u[:, 2], top, rtol=1e-14)
 
 
+def test_the_solver_gets_the_node_coordinates(patch_runs, monkeypatch):
+    """run_deck gives the solver the mesh's node coordinates, so that its linear solvers factor
+    in nested-dissection order as ContactModel.assemble's models do (without them the solvers
+    fall back to reverse Cuthill–McKee: docs/performance.md, "FE engine", has the fill and the
+    times of both on the benchmark's decks)."""
+    from roughcontact.fe import deck_run
+
+    runs, _, _ = patch_runs
+    problem, seen = runs["quadratic"].problem, []
+    solve = deck_run.solve
+    monkeypatch.setattr(deck_run, "solve", lambda model, *a, **k: seen.append(model) or solve(model, *a, **k))
+    deck_run.run_deck(problem)
+    assert len(seen) == 1  # the three steps share one load path
+    np.testing.assert_array_equal(seen[0].coordinates, problem.mesh.points)
+
+
 def test_an_interaction_without_a_law(patch_runs, tmp_path):
     _, cf, tmp = patch_runs
     (tmp_path / "law.yaml").write_text((tmp / "law.yaml").read_text().replace("ROUGH:", "SMOOTH:"))

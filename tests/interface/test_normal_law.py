@@ -136,6 +136,28 @@ def test_reference_state_from_pressure(elastic_table):
         assert law.normal(du)[0] == table.evaluate(law.h_ref - du)[0]
 
 
+@pytest.mark.parametrize("table_name", ["elastic_table", "ep_table"])
+def test_separation_at_inverts_the_table(table_name, request):
+    """separation_at against scipy's brentq on the same interpolant (an independent root
+    finder), and the round trip p_N(h(p)) = p, at 400 pressures over the whole range, the
+    nodes' own pressures and both ends."""
+    from scipy.optimize import brentq
+
+    table = request.getfixturevalue(table_name)
+    tab = table.kernel_table
+    pressures = np.concatenate([np.geomspace(table.p_light, table.p_max, 400), np.exp(table.q)])
+    for p in pressures:
+        h = table.separation_at(p)
+        assert table.evaluate(h)[0] == pytest.approx(p, rel=1e-13)
+        i = int(np.clip(np.searchsorted(table.h, h) - 1, 0, table.n_nodes - 2))
+        a, b = table.h[i], table.h[i + 1]
+        g = lambda x: math.log(closure_law(-x, 0.0, tab)[0]) - math.log(p)  # noqa: E731
+        ref = a if g(a) == 0.0 else b if g(b) == 0.0 else brentq(g, a, b, xtol=1e-16, rtol=1e-15)
+        assert abs(h - ref) <= 1e-14 * table.surface.height_std, (p, h, ref)
+    with pytest.raises(ValueError, match="outside the table range"):
+        table.separation_at(table.p_max * 1.001)
+
+
 def test_light_end_tail_and_open_contact(law):
     table = law.table
     eps = 1e-9 * TABLE1.height_std

@@ -54,6 +54,7 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import gc
 import json
 import math
 import os
@@ -326,6 +327,21 @@ def main(argv: Sequence[str] | None = None) -> int:
         except (OSError, ValueError):  # stdout has no descriptor (e.g. replaced in tests)
             pass
         return EXIT_BROKEN_PIPE
+
+
+def entry_point() -> int:
+    """The console script ``roughcontact`` and ``python -m roughcontact``: :func:`main` on
+    ``sys.argv[1:]``, then the process ends.
+
+    Before it ends, every object is frozen out of the cyclic garbage collector
+    (:func:`gc.freeze`): the interpreter's collections at exit would otherwise walk all that
+    numba and scipy created, 0.2–0.3 s after a command that ran numba kernels (measured on a
+    2-core machine: 0.22–0.30 s from the last statement to the end of the process, 0.03 s
+    frozen). The operating system frees the memory; the output is flushed by then. Not in
+    :func:`main`, which tests and scripts call in a process that goes on."""
+    code = main()
+    gc.freeze()
+    return code
 
 
 def _main(argv: Sequence[str] | None) -> int:

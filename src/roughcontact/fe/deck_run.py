@@ -253,8 +253,9 @@ def run_deck(problem: DeckProblem, options: NewtonOptions | None = None, progres
     while s < len(deck.steps):
         covered, fixed, dead_z, pattern, levels = _plan(problem, s, u, F_start)
         dead_u = dead_z[n:]
+        # the node coordinates give the linear solvers their nested-dissection ordering
         model = ContactModel(K, problem.points, materials, fixed, pattern[:n] - K @ pattern[n:],
-                             F_start + dead_z[:n] - K @ (u + dead_u))
+                             F_start + dead_z[:n] - K @ (u + dead_u), coordinates=problem.mesh.points)
         counts = {k: sum(1 for lv in levels if lv[0] == k) for k in covered}
 
         def report(j, m, inc, levels=levels, counts=counts):

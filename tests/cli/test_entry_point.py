@@ -1,0 +1,30 @@
+"""The process entry point (``roughcontact`` and ``python -m roughcontact``): cli.main, then
+every object frozen out of the cyclic collector so that the interpreter's exit does not walk
+them (cli.entry_point's docstring has the measurement); tests call cli.main, which does not."""
+
+import importlib.metadata
+import subprocess
+import sys
+
+from roughcontact import __version__, cli
+
+
+def test_entry_point_runs_main_then_freezes(monkeypatch):
+    calls = []
+    monkeypatch.setattr(cli, "main", lambda: calls.append("main") or 7)
+    monkeypatch.setattr(cli.gc, "freeze", lambda: calls.append("freeze"))
+    assert cli.entry_point() == 7
+    assert calls == ["main", "freeze"]
+
+
+def test_main_does_not_freeze(monkeypatch):
+    monkeypatch.setattr(cli.gc, "freeze", lambda: (_ for _ in ()).throw(AssertionError("froze")))
+    assert cli.main(["--version"]) == 0
+
+
+def test_console_script_and_module_use_the_entry_point():
+    scripts = importlib.metadata.entry_points(group="console_scripts")
+    assert scripts["roughcontact"].value == "roughcontact.cli:entry_point"
+    r = subprocess.run([sys.executable, "-m", "roughcontact", "--version"], capture_output=True, text=True,
+                       timeout=120)
+    assert r.returncode == 0 and r.stdout.strip() == f"roughcontact {__version__}"
