@@ -26,9 +26,10 @@ import numpy as np
 from roughcontact import SpectralMoments
 from roughcontact.fe import assembly
 from roughcontact.fe.contact import statistical_interface
+from roughcontact.fe.deck_writer import box_part, element_lines, id_lines, node_lines
 from roughcontact.fe.mesh import box, dofs, interface_between, merge
 from roughcontact.fe.solver import ContactModel
-from roughcontact.paper.calculix import _hex20_grid, _lines, _table_lines
+from roughcontact.paper.calculix import table_lines
 
 #: the surface of the interface (µm): the moments of the issue's example law
 MOMENTS = dict(m00=0.0625, m20=8.0e-5, m02=8.0e-4, m40=1.04e-6, m04=1.04e-4)
@@ -140,52 +141,30 @@ def calculix_deck(problem: BlockOnBase, table_text: str) -> str:
     (slave: the block's bottom, master: the base's top) with the *SURFACE INTERACTION ROUGH
     of ``table_text`` (:func:`calculix_table`), one *STEP of ``increments`` initial increments,
     node sets BLOCKBOTTOM and LOADED printed at the end."""
-    (bx, by, bz), (Bx, By, Bz) = problem.edges()
-    ids_b, xyz_b, el_b, _ = _hex20_grid(bx, by, bz)
-    ids_f, xyz_f, el_f, _ = _hex20_grid(Bx, By, Bz)
-    off_n, off_e = len(xyz_f), len(el_f)
-    node_lines = [f"{i + 1}, {x:.12g}, {y:.12g}, {z:.12g}" for i, (x, y, z) in enumerate(xyz_f)]
-    node_lines += [f"{off_n + i + 1}, {x:.12g}, {y:.12g}, {z:.12g}" for i, (x, y, z) in enumerate(xyz_b)]
+    block_edges, base_edges = problem.edges()
+    base = box_part(*base_edges)
+    block = box_part(*block_edges, first_node=len(base.node_ids) + 1, first_element=len(base.element_ids) + 1)
+    # the loaded faces: the block's top layer, element centres at x > load_x
+    x = block.edges[0]
+    top = block.face_elements["ZMAX"]
+    centre_x = 0.5 * (x[:-1] + x[1:])[block.element_ijk[top - block.element_ids[0], 0]]
+    loaded_el = top[centre_x > problem.load_x]
 
-    def elements(conn, node_off, el_off):
-        return "\n".join(f"{el_off + e + 1}, " + ", ".join(str(n + node_off) for n in c[:10]) + ",\n"
-                         + ", ".join(str(n + node_off) for n in c[10:]) for e, c in enumerate(conn))
+    def lines(*blocks):
+        return "\n".join(line for b in blocks for line in b)
 
-    nx_b, ny_b = len(bx) - 1, len(by) - 1
-    nx_f, ny_f, nz_f = len(Bx) - 1, len(By) - 1, len(Bz) - 1
-    block_bottom_el = [off_e + 1 + i for i in range(nx_b * ny_b)]  # the first layer (k = 0)
-    base_top_el = [1 + i + nx_f * ny_f * (nz_f - 1) for i in range(nx_f * ny_f)]  # the last layer
-    top_k = max(k for (_, _, k) in ids_b)
-    # the loaded faces: top layer of the block, element centres at x > load_x
-    top_layer = [off_e + 1 + i + nx_b * ny_b * (len(bz) - 2) for i in range(nx_b * ny_b)]
-    x_centres = 0.5 * (bx[:-1] + bx[1:])
-    loaded_el = [e for e, i in zip(top_layer, range(nx_b * ny_b)) if x_centres[i % nx_b] > problem.load_x]
-    block_bottom = sorted(off_n + n for (i, j, k), n in ids_b.items() if k == 0)
-    block_top = sorted(off_n + n for (i, j, k), n in ids_b.items() if k == top_k)
-    base_bottom = sorted(n for (i, j, k), n in ids_f.items() if k == 0)
     dt = 1.0 / problem.increments
     return f"""** roughcontact benchmark: block on base, refinement {problem.refine} (benchmarks/block_on_base.py)
 ** units mm, N, N/mm^2; the interface law exported by roughcontact.interface.export
 *HEADING
 block on base, refinement {problem.refine}
-*NODE, NSET=NALL
-{chr(10).join(node_lines)}
-*ELEMENT, TYPE=C3D20, ELSET=BASE
-{elements(el_f, 0, 0)}
-*ELEMENT, TYPE=C3D20, ELSET=BLOCK
-{elements(el_b, off_n, off_e)}
-*ELSET, ELSET=BLOCKBOTTOMEL
-{_lines(block_bottom_el)}
-*ELSET, ELSET=BASETOPEL
-{_lines(base_top_el)}
-*ELSET, ELSET=LOADEDEL
-{_lines(loaded_el)}
-*NSET, NSET=BLOCKBOTTOM
-{_lines(block_bottom)}
-*NSET, NSET=BLOCKTOP
-{_lines(block_top)}
-*NSET, NSET=BASEBOTTOM
-{_lines(base_bottom)}
+{lines(node_lines(base, "NALL", digits=12), node_lines(block, digits=12)[1:])}
+{lines(element_lines(base, "BASE"), element_lines(block, "BLOCK"))}
+{lines(id_lines("*ELSET, ELSET=BLOCKBOTTOMEL", block.face_elements["ZMIN"]),
+       id_lines("*ELSET, ELSET=BASETOPEL", base.face_elements["ZMAX"]), id_lines("*ELSET, ELSET=LOADEDEL", loaded_el),
+       id_lines("*NSET, NSET=BLOCKBOTTOM", block.face_nodes["ZMIN"]),
+       id_lines("*NSET, NSET=BLOCKTOP", block.face_nodes["ZMAX"]),
+       id_lines("*NSET, NSET=BASEBOTTOM", base.face_nodes["ZMIN"]))}
 *MATERIAL, NAME=STEEL
 *ELASTIC
 {problem.E_block:.12e}, {problem.nu_block}
@@ -199,7 +178,7 @@ BLOCKBOTTOMEL, S1
 *SURFACE, NAME=MASTER, TYPE=ELEMENT
 BASETOPEL, S2
 *SURFACE INTERACTION, NAME=ROUGH
-{_table_lines(table_text)}
+{table_lines(table_text)}
 *CONTACT PAIR, INTERACTION=ROUGH, TYPE=NODE TO SURFACE
 SLAVE, MASTER
 *BOUNDARY

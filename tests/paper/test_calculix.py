@@ -30,17 +30,7 @@ def _table(case, spec):
     return table, format_table(table, "calculix", length_scale=1e-3)
 
 
-def test_hex20_grid_counts_and_load_weights():
-    x, y, z = [0.0, 1.0, 2.0], [0.0, 1.0], [0.0, 1.0, 3.0]
-    ids, coords, elements, _ = calculix._hex20_grid(x, y, z)
-    # corners 3*2*3 + mid-edges along x 2*2*3, along y 3*1*3, along z 3*2*2 (no face or body centres)
-    assert len(coords) == len(ids) == 18 + 12 + 9 + 12
-    assert len(elements) == 4 and all(len(e) == 20 for e in elements)
-    assert len({n for e in elements for n in e}) == len(ids)  # every node belongs to an element
-    # C3D20 order: node 9 is the mid-point of the edge 1-2
-    e = elements[0]
-    np.testing.assert_allclose(coords[e[8] - 1], 0.5 * (coords[e[0] - 1] + coords[e[1] - 1]))
-    np.testing.assert_allclose(coords[e[16] - 1], 0.5 * (coords[e[0] - 1] + coords[e[4] - 1]))
+def test_beam_deck_load_weights():
     deck = calculix.beam_deck("*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=TABULAR\n0.0, -1e-4\n1.0, 0.0\n",
                               BeamSpec(elements="quadratic", n_x=2, n_z=2))
     cloads = [line for line in deck.splitlines() if line.count(",") == 2 and ", 3, " in line]

@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 
 from roughcontact import cli
+from roughcontact.fe.deck_writer import box_part, id_lines
 from roughcontact.interface.export import parse_table
 from roughcontact.paper import calculix
 
@@ -37,7 +38,10 @@ def block_deck(table: str, pressure: float, *, n: int = 1, quadratic: bool = Fal
     {(i, j): node} of the bottom nodes on the doubled grid (corners at even i, j)."""
     x, z = np.linspace(0.0, 1.0, n + 1), np.array([0.0, 1.0])
     if quadratic:
-        ids, coords, elements, _ = calculix._hex20_grid(x, x, z)
+        part = box_part(x, x, z)
+        coords, elements = part.coords, part.connectivity.tolist()
+        # keys on the doubled grid, as the C3D8 branch's
+        ids = {tuple(int(v) for v in np.rint(c * [2 * n, 2 * n, 2])): int(node) for c, node in zip(coords, part.node_ids)}
     else:
         ids, coords = {}, []
         for k in range(2):
@@ -60,9 +64,8 @@ def block_deck(table: str, pressure: float, *, n: int = 1, quadratic: bool = Fal
         lines.append(f"{e + 1}, " + ", ".join(map(str, conn[:10])) + (",\n" + ", ".join(map(str, conn[10:]))
                                                                       if len(conn) > 10 else ""))
     lines += ["*ELEMENT, TYPE=C3D8, ELSET=BASE", f"{len(elements) + 1}, " + ", ".join(str(nb + 1 + i) for i in range(8)),
-              "*NSET, NSET=BOTTOM", calculix._lines(sorted(bottom.values())), "*NSET, NSET=BASENODES",
-              calculix._lines(range(nb + 1, nb + 9)), "*NSET, NSET=X0", calculix._lines(x0), "*NSET, NSET=Y0",
-              calculix._lines(y0), "*MATERIAL, NAME=STEEL", "*ELASTIC", f"{E:g}, 0.3", "*MATERIAL, NAME=RIGID",
+              *id_lines("*NSET, NSET=BOTTOM", sorted(bottom.values())), *id_lines("*NSET, NSET=BASENODES", range(nb + 1, nb + 9)),
+              *id_lines("*NSET, NSET=X0", x0), *id_lines("*NSET, NSET=Y0", y0), "*MATERIAL, NAME=STEEL", "*ELASTIC", f"{E:g}, 0.3", "*MATERIAL, NAME=RIGID",
               "*ELASTIC", "1e12, 0.0", "*SOLID SECTION, ELSET=BLOCK, MATERIAL=STEEL",
               "*SOLID SECTION, ELSET=BASE, MATERIAL=RIGID",
               *(["*SURFACE, NAME=SLAVE, TYPE=NODE", "BOTTOM"] if slave == "node" else ["*SURFACE, NAME=SLAVE", "BLOCK, S1"]),
@@ -142,7 +145,7 @@ def test_surface_to_surface_with_a_tabular_law_fails(tmp_path, exported):
     """TYPE=SURFACE TO SURFACE: a tabular law fails (a 3-row table: too many cutbacks; the
     exported one: a crash), a LINEAR law runs; NODE TO SURFACE runs with both tables."""
     short = "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=TABULAR\n0.0, -1.0e-4\n1.0, 1.0e-4\n2.0, 3.0e-4\n"
-    for name, table in (("short", short), ("exported", calculix._table_lines(exported[1]))):
+    for name, table in (("short", short), ("exported", calculix.table_lines(exported[1]))):
         deck, _ = block_deck(table, 0.5, contact="SURFACE TO SURFACE")
         with pytest.raises(RuntimeError, match="ccx failed"):
             calculix.run_ccx(deck, f"s2s-{name}", tmp_path)

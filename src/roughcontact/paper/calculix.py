@@ -37,10 +37,11 @@ from pathlib import Path
 import numpy as np
 
 from ..examples.beam import BeamSpec
+from ..fe.deck_writer import box_part, element_lines, id_lines, node_lines
 from ..fe.mesh import graded
 
-__all__ = ["CCX_INSTALL", "ccx_executable", "ccx_version", "skipped_line", "run_ccx", "block_deck", "beam_deck", "node_prints",
-           "block_closures_um", "beam_deflections_um", "engine_deflections_um",
+__all__ = ["CCX_INSTALL", "ccx_executable", "ccx_version", "skipped_line", "run_ccx", "table_lines", "block_deck",
+           "beam_deck", "node_prints", "block_closures_um", "beam_deflections_um", "engine_deflections_um",
            "width_and_half_element_average"]
 
 #: how to get ccx where it is missing (Debian/Ubuntu); the gate's expected_checks says the same
@@ -92,8 +93,9 @@ def run_ccx(deck: str, name: str, workdir, *, exe: str | None = None, timeout: f
     return dat.read_text(), seconds
 
 
-def _table_lines(table_text: str) -> str:
-    """The *SURFACE BEHAVIOR (and *FRICTION) lines of an exported table, comments dropped."""
+def table_lines(table_text: str) -> str:
+    """The *SURFACE BEHAVIOR (and *FRICTION) lines of an exported table, comments and blank
+    lines dropped: what goes under a deck's *SURFACE INTERACTION."""
     return "\n".join(line for line in table_text.splitlines() if line.strip() and not line.startswith("**"))
 
 
@@ -153,7 +155,7 @@ BLOCK, S1
 *SURFACE, NAME=MASTER
 BASE, S2
 *SURFACE INTERACTION, NAME=ROUGH
-{_table_lines(table_text)}
+{table_lines(table_text)}
 *CONTACT PAIR, INTERACTION=ROUGH, TYPE=NODE TO SURFACE
 SLAVE, MASTER
 *BOUNDARY
@@ -212,38 +214,11 @@ def block_closures_um(dat: str, n_steps: int) -> np.ndarray:
 # ---------------------------------------------------------------------------------------------
 # the beam of example 9.1
 # ---------------------------------------------------------------------------------------------
-def _hex20_grid(x, y, z):
-    """Nodes and C3D20 connectivity of a structured mesh with element boundaries x, y, z.
-    Node (i, j, k) on the doubled grid exists where at most one index is odd."""
-    def doubled(e):
-        e = np.asarray(e, dtype=float)
-        out = np.empty(2 * e.size - 1)
-        out[0::2], out[1::2] = e, 0.5 * (e[:-1] + e[1:])
-        return out
-
-    X, Y, Z = doubled(x), doubled(y), doubled(z)
-    ids, coords = {}, []
-    for k in range(Z.size):
-        for j in range(Y.size):
-            for i in range(X.size):
-                if (i % 2) + (j % 2) + (k % 2) <= 1:
-                    ids[(i, j, k)] = len(coords) + 1
-                    coords.append((X[i], Y[j], Z[k]))
-    elements = []
-    for ek in range(len(z) - 1):
-        for ej in range(len(y) - 1):
-            for ei in range(len(x) - 1):
-                i0, j0, k0 = 2 * ei, 2 * ej, 2 * ek
-                c = [(0, 0, 0), (2, 0, 0), (2, 2, 0), (0, 2, 0), (0, 0, 2), (2, 0, 2), (2, 2, 2), (0, 2, 2)]
-                mid = [(1, 0, 0), (2, 1, 0), (1, 2, 0), (0, 1, 0), (1, 0, 2), (2, 1, 2), (1, 2, 2), (0, 1, 2),
-                       (0, 0, 1), (2, 0, 1), (2, 2, 1), (0, 2, 1)]  # CalculiX/Abaqus C3D20 order
-                elements.append([ids[(i0 + a, j0 + b, k0 + d)] for a, b, d in c + mid])
-    return ids, np.array(coords), elements, (X, Y, Z)
-
-
-def _lines(values, per_line=16):
-    v = [str(int(a)) for a in values]
-    return "\n".join(", ".join(v[i:i + per_line]) for i in range(0, len(v), per_line))
+def _beam_part(spec: BeamSpec):
+    """The quarter beam's C3D20 mesh on the engine's mesh lines (n_x uniform, n_z graded by
+    z_ratio from the contact face), node and element ids from 1."""
+    return box_part(graded(0.0, spec.length / 2.0, spec.n_x, 1.0), [0.0, spec.width / 2.0],
+                    graded(0.0, spec.height, spec.n_z, spec.z_ratio))
 
 
 def beam_deck(table_text: str, spec: BeamSpec = BeamSpec()) -> str:
@@ -252,23 +227,20 @@ def beam_deck(table_text: str, spec: BeamSpec = BeamSpec()) -> str:
     _check_rows(table_text)
     if spec.load_patch != 0.0 or spec.x_ratio != 1.0:
         raise ValueError("the CalculiX beam takes the line load on a uniform x mesh (load_patch 0, x_ratio 1)")
-    x = graded(0.0, spec.length / 2.0, spec.n_x, 1.0)
-    y = np.array([0.0, spec.width / 2.0])
-    z = graded(0.0, spec.height, spec.n_z, spec.z_ratio)
-    ids, coords, elements, (X, Y, Z) = _hex20_grid(x, y, z)
-    bottom = [n for (i, j, k), n in ids.items() if k == 0]
-    xmin = [n for (i, j, k), n in ids.items() if i == 0]
-    ymin = [n for (i, j, k), n in ids.items() if j == 0]
-    line = [ids[(0, j, Z.size - 1)] for j in range(Y.size)]  # y = 0, b/4, b/2 at x = 0, top
-    base0 = len(coords) + 1
+    beam = _beam_part(spec)
+    # the line load's nodes: y = 0, b/4, b/2 at x = 0 on the top (ids ascend with y)
+    line = np.intersect1d(beam.face_nodes["XMIN"], beam.face_nodes["ZMAX"]).tolist()
+    base0 = len(beam.node_ids) + 1
     lo, hi = -10.0, spec.length / 2.0 + 10.0
     base = [(lo, -5.0, -10.0), (hi, -5.0, -10.0), (hi, 10.0, -10.0), (lo, 10.0, -10.0),
             (lo, -5.0, 0.0), (hi, -5.0, 0.0), (hi, 10.0, 0.0), (lo, 10.0, 0.0)]
-    nodes = "\n".join(f"{n + 1}, {a:.12g}, {b:.12g}, {c:.12g}" for n, (a, b, c) in enumerate(coords))
+    nodes = "\n".join(node_lines(beam, "NALL", digits=12))
     nodes += "\n" + "\n".join(f"{base0 + n}, {a:.12g}, {b:.12g}, {c:.12g}" for n, (a, b, c) in enumerate(base))
-    elems = "\n".join(f"{e + 1}, " + ", ".join(map(str, conn[:10])) + ",\n" + ", ".join(map(str, conn[10:]))
-                      for e, conn in enumerate(elements))
-    bottom_el = list(range(1, (len(x) - 1) * (len(y) - 1) + 1))  # the first layer (k = 0)
+    n_elements = len(beam.element_ids)
+
+    def block(keyword, ids):
+        return "\n".join(id_lines(keyword, ids))
+
     weights = np.array([1.0, 4.0, 1.0]) / 6.0
     quarter = 0.25
 
@@ -276,22 +248,15 @@ def beam_deck(table_text: str, spec: BeamSpec = BeamSpec()) -> str:
         return "\n".join(f"{n}, 3, {-total * quarter * w:.12e}" for n, w in zip(line, weights))
 
     return f"""** roughcontact: example 9.1 (quarter beam) on a rigid base through the exported table (CalculiX)
-*NODE, NSET=NALL
 {nodes}
-*ELEMENT, TYPE=C3D20, ELSET=BEAM
-{elems}
+{chr(10).join(element_lines(beam, "BEAM"))}
 *ELEMENT, TYPE=C3D8, ELSET=BASE
-{len(elements) + 1}, {", ".join(str(base0 + i) for i in range(8))}
-*ELSET, ELSET=CONTACTLAYER
-{_lines(bottom_el)}
-*NSET, NSET=BOTTOM
-{_lines(sorted(bottom))}
-*NSET, NSET=XMIN
-{_lines(sorted(xmin))}
-*NSET, NSET=YMIN
-{_lines(sorted(ymin))}
-*NSET, NSET=BASENODES
-{_lines(range(base0, base0 + 8))}
+{n_elements + 1}, {", ".join(str(base0 + i) for i in range(8))}
+{block("*ELSET, ELSET=CONTACTLAYER", beam.face_elements["ZMIN"])}
+{block("*NSET, NSET=BOTTOM", beam.face_nodes["ZMIN"])}
+{block("*NSET, NSET=XMIN", beam.face_nodes["XMIN"])}
+{block("*NSET, NSET=YMIN", beam.face_nodes["YMIN"])}
+{block("*NSET, NSET=BASENODES", range(base0, base0 + 8))}
 *MATERIAL, NAME=BEAMMAT
 *ELASTIC
 {spec.E:.12e}, {spec.nu}
@@ -305,7 +270,7 @@ CONTACTLAYER, S1
 *SURFACE, NAME=MASTER
 BASE, S2
 *SURFACE INTERACTION, NAME=ROUGH
-{_table_lines(table_text)}
+{table_lines(table_text)}
 *CONTACT PAIR, INTERACTION=ROUGH, TYPE=NODE TO SURFACE
 SLAVE, MASTER
 *BOUNDARY
@@ -357,15 +322,12 @@ def beam_deflections_um(dat: str, spec: BeamSpec = BeamSpec()) -> dict[str, floa
     """u_N from the seated state [µm] (negative = approach) at the centre (x = 0) and the end
     (x = L/2) of the CalculiX beam (:func:`width_and_half_element_average`), and the spread of
     the single bottom nodes there (the ripple)."""
-    x = graded(0.0, spec.length / 2.0, spec.n_x, 1.0)
-    y = np.array([0.0, spec.width / 2.0])
-    z = graded(0.0, spec.height, spec.n_z, spec.z_ratio)
-    ids, coords, *_ = _hex20_grid(x, y, z)
+    beam = _beam_part(spec)
     seated, loaded = _at_step_ends(node_prints(dat, "BOTTOM"), 2)
-    nodes = [n for (i, j, k), n in ids.items() if k == 0]
-    px, py = coords[np.array(nodes) - 1, 0], coords[np.array(nodes) - 1, 1]
-    u = np.array([1000.0 * (loaded[n][2] - seated[n][2]) for n in nodes])
-    return _stations(px, py, u, x)
+    nodes = beam.face_nodes["ZMIN"]
+    px, py = beam.coords[nodes - 1, 0], beam.coords[nodes - 1, 1]  # node ids 1, 2, … in coordinate order
+    u = np.array([1000.0 * (loaded[n][2] - seated[n][2]) for n in nodes.tolist()])
+    return _stations(px, py, u, beam.edges[0])
 
 
 def engine_deflections_um(point_x, point_y, point_u_N_um, spec: BeamSpec = BeamSpec()) -> dict[str, float]:

@@ -20,7 +20,7 @@ import time
 import numpy as np
 
 from ..examples.block_on_base import ALUMINIUM, MOMENTS, STEEL, BlockOnBase, block_on_base_deck
-from .calculix import _check, _table_lines, node_prints, run_ccx
+from .calculix import _check, node_prints, run_ccx, table_lines
 
 __all__ = ["deck_scene", "run_refinement", "render_deck_markdown", "extrapolated"]
 
@@ -57,7 +57,7 @@ def run_refinement(cfg, refine: int, workdir, *, exe=None) -> dict:
                               rtol=cfg["rtol"], reference="seating", seating_pressure=spec.seating_pressure)
     text = format_table(table, "calculix", length_scale=1e-3, length_unit="mm", stress_unit="N/mm^2")
     name = f"block-on-base-{refine}"
-    dat, ccx_seconds = run_ccx(block_on_base_deck(spec, _table_lines(text)), name, workdir, exe=exe,
+    dat, ccx_seconds = run_ccx(block_on_base_deck(spec, table_lines(text)), name, workdir, exe=exe,
                                timeout=float(d.get("timeout", 3600)))
     t0 = time.perf_counter()
     res = run_deck_file(read_deck(f"{workdir}/{name}.inp"), spec.law_file(), "quadratic")
