@@ -24,6 +24,7 @@ CORES  ?= all
 # an idle worker takes tests queued for a busy one (a few tests run ~1 min: the static split left
 # one worker idle at the end)
 WORKERS ?= auto
+PYTEST := $(PY) -m pytest -n $(WORKERS) --dist worksteal
 SNAKEMAKE := $(BIN)/snakemake --workflow-profile workflow/profiles/default --cores $(CORES)
 # Re-install only when the package metadata changes (the install is editable: source edits
 # need no re-install).
@@ -86,11 +87,11 @@ WARM := $(BYTECODE) && $(PY) -m roughcontact.warmup --jobs 2
 
 test: $(STAMP)
 	$(WARM)
-	$(PY) -m pytest -n $(WORKERS) --dist worksteal
+	$(PYTEST)
 
 test-slow: $(STAMP)
 	$(WARM)
-	$(PY) -m pytest -n $(WORKERS) --dist worksteal -m "mpmath or slow"
+	$(PYTEST) -m "mpmath or slow"
 
 # the slow tier as CI runs it (20-minute budget): without the tests that build whole new
 # environments (venv_install: a library-only `pip install .`, Python 3.12/3.13; CI's own `make`
@@ -100,11 +101,11 @@ test-slow: $(STAMP)
 # another form (ci_elsewhere, named in each docstring); `make test-slow` runs them all
 test-slow-ci: $(STAMP)
 	$(WARM)
-	$(PY) -m pytest -n $(WORKERS) --dist worksteal -m "(mpmath or slow) and not venv_install and not ep_twin and not ci_elsewhere"
+	$(PYTEST) -m "(mpmath or slow) and not venv_install and not ep_twin and not ci_elsewhere"
 
 test-all: $(STAMP)
 	$(WARM)
-	$(PY) -m pytest -n $(WORKERS) --dist worksteal -m ""
+	$(PYTEST) -m ""
 
 # the SLURM tier: a one-node cluster (munged, slurmctld, slurmd as root) started by the test;
 # skips with one line where it cannot start (docs/sweeps.rst)
