@@ -306,9 +306,13 @@ rule code_fingerprint:
 
 
 onstart:
-    # a run resumed after a hard kill: the killed jobs' half-written temporaries go (the lock on
-    # this directory guarantees that no job is writing now); dry runs do not call onstart
+    # a run resumed after a hard kill: the killed run's jobs, which outlive a Snakemake killed with
+    # SIGKILL and go on writing, are stopped (one line each); then no job of this directory is
+    # writing (the lock keeps other runs out) and their half-written temporaries go; dry runs do
+    # not call onstart
     from roughcontact.files import remove_partial_files
+    from roughcontact.orphan_jobs import stop_orphan_jobs
 
+    stop_orphan_jobs(REPO, report=lambda line: print(line, file=sys.stderr))
     for _part in remove_partial_files("results", "paper_figures", "logs"):
         print(f"removed the temporary of a killed job: {_part}", file=sys.stderr)
