@@ -25,6 +25,7 @@ import numpy as np
 
 from ..asperity import ellipse
 from .solver import SolverSettings, solve_pressures
+from ..limits import describe
 
 __all__ = ["BEMCheck", "hertz_sphere", "hertz_elliptic", "westergaard"]
 
@@ -86,7 +87,7 @@ def hertz_elliptic(n: int, dx_over_dy: float, *, axis_fraction: float = 0.0625, 
     that the contact ellipse's semi-axes are axis_fraction · (L_x, L_y). ``size``: √(A/π) vs
     √(A_i/π) of (46)."""
     if not dx_over_dy >= 1.0:
-        raise ValueError(f"dx_over_dy must be >= 1, got {dx_over_dy!r}")
+        raise ValueError(f"dx_over_dy must be >= 1, got {describe(dx_over_dy)}")
     Ly = 1.0
     Lx = dx_over_dy * Ly
     e1 = 1.0 / dx_over_dy
@@ -113,9 +114,9 @@ def westergaard(n: int, *, dx: float = 1.0, dy: float = 1.0, axis: str = "x", co
     the mean pressure whose contact width 2a is ``contact_fraction`` of λ. ``size``: the contact
     fraction 2a/λ (the area fraction of the strip)."""
     if axis not in ("x", "y"):
-        raise ValueError(f"axis must be 'x' or 'y', got {axis!r}")
+        raise ValueError(f"axis must be 'x' or 'y', got {describe(axis)}")
     if not 0.0 < contact_fraction < 1.0:
-        raise ValueError(f"contact_fraction must lie in (0, 1), got {contact_fraction!r}")
+        raise ValueError(f"contact_fraction must lie in (0, 1), got {describe(contact_fraction)}")
     lam = n * (dx if axis == "x" else dy)
     h0 = lam / 100.0
     p_star = math.pi * E_star * h0 / lam

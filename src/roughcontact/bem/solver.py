@@ -25,6 +25,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..validation import positive
+from ..limits import describe
 
 __all__ = ["SKIP_MESSAGE", "BEMNotInstalled", "BEMConvergenceError", "SolverSettings", "LadderResult",
            "available", "solve_pressures"]
@@ -85,9 +86,9 @@ class SolverSettings:
         for name in ("pentol", "forcetol", "thermotol"):
             v = positive(name, getattr(self, name))
             if not v < 1.0:
-                raise ValueError(f"{name} must be a fraction in (0, 1), got {v!r}")
+                raise ValueError(f"{name} must be a fraction in (0, 1), got {describe(v)}")
         if isinstance(self.maxiter, bool) or not isinstance(self.maxiter, int) or self.maxiter < 1:
-            raise ValueError(f"maxiter must be a positive integer, got {self.maxiter!r}")
+            raise ValueError(f"maxiter must be a positive integer, got {describe(self.maxiter)}")
 
     def as_dict(self) -> dict:
         return {"pentol": self.pentol, "forcetol": self.forcetol, "thermotol": self.thermotol,
@@ -136,7 +137,7 @@ def solve_pressures(z, dx: float, dy: float, E_star: float, pressures, *,
     dx, dy, E_star = positive("dx", dx), positive("dy", dy), positive("E_star", E_star)
     p = np.atleast_1d(np.asarray(pressures, dtype=float))
     if p.ndim != 1 or p.size == 0 or not np.all(np.isfinite(p) & (p > 0)) or np.any(np.diff(p) <= 0):
-        raise ValueError(f"pressures must be positive, finite and increasing, got {pressures!r}")
+        raise ValueError(f"pressures must be positive, finite and increasing, got {describe(pressures)}")
     ny, nx = z.shape
     heights = np.ascontiguousarray(z.T)  # ContactMechanics: [x, y]
     area0 = nx * dx * ny * dy

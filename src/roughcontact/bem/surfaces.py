@@ -37,6 +37,7 @@ from scipy.optimize import brentq
 
 from ..statistics.surface import SpectralMoments
 from ..validation import positive
+from ..limits import describe
 
 __all__ = ["BandLimitedSurface"]
 
@@ -95,10 +96,10 @@ class BandLimitedSurface:
             raise TypeError(f"moments must be a SpectralMoments, got {type(moments).__name__}")
         hurst = positive("hurst", hurst)
         if not hurst < 1.0:
-            raise ValueError(f"hurst must lie in (0, 1), got {hurst!r}")
+            raise ValueError(f"hurst must lie in (0, 1), got {describe(hurst)}")
         k_high = positive("k_high", k_high)
         if k_high < 4.0:
-            raise ValueError(f"k_high must be >= 4 lattice units, got {k_high!r}")
+            raise ValueError(f"k_high must be >= 4 lattice units, got {describe(k_high)}")
         a1, a2 = moments.alpha1, moments.alpha2
         if abs(a1 - a2) > ALPHA_MATCH_RTOL * max(a1, a2):
             raise ValueError(
@@ -150,13 +151,13 @@ class BandLimitedSurface:
         """The random phases φ_k ∈ [0, 2π) of realisation ``seed`` (numpy's PCG64), one per mode
         in the lattice's fixed order: the same surface on every grid."""
         if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
-            raise ValueError(f"seed must be a non-negative integer, got {seed!r}")
+            raise ValueError(f"seed must be a non-negative integer, got {describe(seed)}")
         return np.random.default_rng(int(seed)).uniform(0.0, 2 * math.pi, self.kx.size)
 
     def heights(self, n: int, seed: int) -> np.ndarray:
         """The realisation ``seed`` on an n × n grid: z[i, j] [L] at x = j·dx, y = i·dy, zero mean."""
         if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < self.min_points():
-            raise ValueError(f"n must be an integer >= {self.min_points()} (every mode below Nyquist), got {n!r}")
+            raise ValueError(f"n must be an integer >= {self.min_points()} (every mode below Nyquist), got {describe(n)}")
         n = int(n)
         coef = 0.5 * self.amplitude * np.exp(1j * self.phases(seed)) * (n * n)
         F = np.zeros((n, n), dtype=complex)

@@ -24,6 +24,7 @@ from ..validation import instance, positive
 from .elastic import S_MAX_RATIO, ContactCurves, elastic_contact
 from .elastoplastic import ElastoPlasticCurves, elastoplastic_contact
 from .validity import relay_warnings
+from ..limits import describe
 
 __all__ = ["ContactAtPressure", "contact_at_pressure"]
 
@@ -65,7 +66,7 @@ def _pressures(p) -> np.ndarray:
     try:
         a = np.atleast_1d(np.asarray(p, dtype=float))
     except (TypeError, ValueError):
-        raise ValueError(f"pressure must be real numbers, got {p!r}") from None
+        raise ValueError(f"pressure must be real numbers, got {describe(p)}") from None
     if a.ndim != 1 or a.size == 0:
         raise ValueError(f"pressure must be one number or a 1-d sequence, got shape {a.shape}")
     if not np.all(np.isfinite(a) & (a > 0.0)):
@@ -95,7 +96,7 @@ def contact_at_pressure(surface: SpectralMoments, p, *, E_star=None, material=No
         E_star = positive("E_star", E_star)
     rtol = float(rtol)
     if not (1e-14 <= rtol <= 1e-2):
-        raise ValueError(f"rtol must lie in [1e-14, 1e-2], got {rtol!r}")
+        raise ValueError(f"rtol must lie in [1e-14, 1e-2], got {describe(rtol)}")
     target = _pressures(p)
 
     def evaluate(s, validity="off"):

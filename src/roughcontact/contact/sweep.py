@@ -29,6 +29,7 @@ from ..validation import choice
 from .closures import CLOSURES, DEFAULTS, default_closure, resolve_material
 from .validity import VALIDITY_MODES
 from .units import PARAMETER_LONG_NAMES, attrs, check_units, parameter_units
+from ..limits import describe
 
 __all__ = [
     "SweepSpec", "SWEEPABLE", "run_sweep", "split", "combine", "chunk_count", "parameter_units",
@@ -100,15 +101,15 @@ class SweepSpec:
         fixed = {str(k): float(v) for k, v in dict(self.fixed).items()}
         for name in [*axes, *fixed]:
             if name not in SWEEPABLE:
-                raise ValueError(f"unknown sweep parameter {name!r}; choose from {', '.join(SWEEPABLE)}")
+                raise ValueError(f"unknown sweep parameter {describe(name)}; choose from {', '.join(SWEEPABLE)}")
         both = set(axes) & set(fixed)
         if both:
             raise ValueError(f"parameters both swept and fixed: {', '.join(sorted(both))}")
         for name, v in axes.items():
             if v.ndim != 1 or v.size == 0 or not np.all(np.isfinite(v)):
-                raise ValueError(f"sweep axis {name!r} must be a non-empty 1-D list of finite numbers")
+                raise ValueError(f"sweep axis {describe(name)} must be a non-empty 1-D list of finite numbers")
             if np.unique(v).size != v.size:
-                raise ValueError(f"sweep axis {name!r} has repeated values")
+                raise ValueError(f"sweep axis {describe(name)} has repeated values")
         given = set(axes) | set(fixed)
         missing = [m for m in (*_MOMENTS, "E_star") if m not in given]
         if missing:
@@ -118,7 +119,7 @@ class SweepSpec:
             closure = default_closure(1.0 if "psi" in given else None, 1.0 if "Y" in given else None)
             object.__setattr__(self, "closure", closure)
         elif self.closure not in CLOSURES:
-            raise ValueError(f"closure must be one of {', '.join(CLOSURES)}; got {self.closure!r}")
+            raise ValueError(f"closure must be one of {', '.join(CLOSURES)}; got {describe(self.closure)}")
         choice("validity", self.validity, VALIDITY_MODES)
         for name in self.interpolate_axes:
             choice("interpolate_axes", name, INTERPOLABLE)
@@ -358,7 +359,7 @@ def _interpolation_attrs(records) -> dict:
 def split(spec: SweepSpec, axis: str, chunks: int) -> list[SweepSpec]:
     """Split ``spec`` along ``axis`` into at most ``chunks`` contiguous pieces (for jobs)."""
     if axis not in spec.axes:
-        raise ValueError(f"cannot split along {axis!r}: not a sweep axis ({', '.join(spec.axes)})")
+        raise ValueError(f"cannot split along {describe(axis)}: not a sweep axis ({', '.join(spec.axes)})")
     values = spec.axes[axis]
     n = max(1, min(int(chunks), values.size))
     return [replace(spec, axes={**spec.axes, axis: part}) for part in np.array_split(values, n)]
@@ -398,7 +399,7 @@ def axis_values(axis) -> np.ndarray:
             if not (start > 0 and stop > 0):
                 raise ValueError(f"a log-spaced axis needs positive start and stop, got {start}, {stop}")
             return np.geomspace(start, stop, num)
-        raise ValueError(f"axis spacing must be 'linear' or 'log', got {spacing!r}")
+        raise ValueError(f"axis spacing must be 'linear' or 'log', got {describe(spacing)}")
     return np.atleast_1d(np.asarray(axis, dtype=float))
 
 

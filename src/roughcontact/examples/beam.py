@@ -46,6 +46,7 @@ from ..fe.solver import NewtonOptions
 from ..interface import friction
 from ..validation import choice, positive
 from .section9 import BEAM, BEAM_E_STAR, SURFACE, OnSurface
+from ..limits import describe
 
 __all__ = ["BeamSpec", "BeamRun", "BeamResult", "beam_deck", "beam_mesh", "run_beam", "ELEMENT_FAMILIES", "TANGENTIAL",
            "PRESSURE_RANGE", "INTERACTION"]
@@ -84,14 +85,14 @@ class BeamSpec:
             positive(name, getattr(self, name))
         positive("load_patch", self.load_patch, allow_zero=True)
         if not -1.0 < self.nu < 0.5:
-            raise ValueError(f"nu must lie in (-1, 0.5), got {self.nu!r}")
+            raise ValueError(f"nu must lie in (-1, 0.5), got {describe(self.nu)}")
         if self.initial_load >= self.load:
             raise ValueError("initial_load must be smaller than load")
         choice("elements", self.elements, ELEMENT_FAMILIES)
         for name in ("increments", "n_x", "n_z"):
             v = getattr(self, name)
             if isinstance(v, bool) or int(v) != v or v < 1:
-                raise ValueError(f"{name} must be a positive integer, got {v!r}")
+                raise ValueError(f"{name} must be a positive integer, got {describe(v)}")
         if self.load_patch >= self.length:
             raise ValueError("load_patch must be shorter than the beam")
 
@@ -197,7 +198,7 @@ class BeamRun(OnSurface):
         choice("tangential", self.tangential, TANGENTIAL)
         choice("law", self.law, ("elastic", "elastoplastic"))
         if (self.mu is not None) != (self.tangential == "coulomb"):
-            raise ValueError(f"mu is needed with tangential='coulomb' and only used there (got mu={self.mu!r})")
+            raise ValueError(f"mu is needed with tangential='coulomb' and only used there (got mu={describe(self.mu)})")
         if self.law == "elastic" and (self.psi is not None or self.Y is not None):
             raise ValueError("psi and Y belong to the elasto-plastic law")
         if self.law == "elastoplastic" and (self.psi is None) == (self.Y is None):

@@ -26,6 +26,7 @@ from ..fe.deck_writer import box_part, element_lines, id_lines, node_lines, numb
 from ..fe.laws import InteractionLaw, LawFile, NoFriction
 from ..statistics import SpectralMoments
 from ..validation import positive
+from ..limits import describe
 
 __all__ = ["BlockOnBase", "block_on_base_deck", "MOMENTS", "STEEL", "ALUMINIUM"]
 
@@ -51,7 +52,7 @@ class BlockOnBase:
         for name in ("refine", "increments"):
             v = getattr(self, name)
             if isinstance(v, bool) or int(v) != v or v < 1:
-                raise ValueError(f"{name} must be a positive integer, got {v!r}")
+                raise ValueError(f"{name} must be a positive integer, got {describe(v)}")
         positive("pressure", self.pressure)
         positive("seating_pressure", self.seating_pressure)
 

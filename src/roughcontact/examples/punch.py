@@ -48,6 +48,7 @@ from ..interface import friction
 from ..validation import choice, positive
 from .punch_geometry import BASE, SYMMETRY_X, SYMMETRY_Y, PunchGeometry
 from .section9 import FIG18_CASES, FIG18_NU, N_PER_MM, PUNCH, PUNCH_M00, PUNCH_PSI, SURFACE, OnSurface
+from ..limits import describe
 
 __all__ = ["PunchSpec", "PunchRun", "PunchResult", "punch_deck", "punch_mesh", "summary", "run_punch", "dissipation", "bound",
            "frictionless_bound", "mu_max", "to_dataset", "summary_of", "LOAD_ON", "CASES", "PRESSURE_RANGE"]
@@ -77,13 +78,13 @@ class PunchSpec:
         for name in ("E", "load", "seating_pressure"):
             positive(name, getattr(self, name))
         if not -1.0 < self.nu < 0.5:
-            raise ValueError(f"nu must lie in (-1, 0.5), got {self.nu!r}")
+            raise ValueError(f"nu must lie in (-1, 0.5), got {describe(self.nu)}")
         choice("load_on", self.load_on, LOAD_ON)
         for name in ("increments", "unload_increments"):
             v = getattr(self, name)
             if isinstance(v, bool) or int(v) != v or v < (1 if name == "increments" else 0):
                 raise ValueError(f"{name} must be a {'positive' if name == 'increments' else 'non-negative'} "
-                                 f"integer, got {v!r}")
+                                 f"integer, got {describe(v)}")
 
     @property
     def quarter_load(self) -> float:

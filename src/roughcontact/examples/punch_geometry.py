@@ -39,6 +39,7 @@ import numpy as np
 from ..fe.mesh import graded
 from ..validation import choice, positive
 from .section9 import PUNCH
+from ..limits import describe
 
 __all__ = ["PunchGeometry", "SYMMETRY_X", "SYMMETRY_Y", "BASE", "FAMILIES", "figure_annotations"]
 
@@ -53,7 +54,7 @@ _ON_GRID = 1e-9  # relative tolerance [–] for "load_patch/2 is already an elem
 
 def _count(name: str, value) -> int:
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 1:
-        raise ValueError(f"{name} must be an integer >= 1, got {value!r}")
+        raise ValueError(f"{name} must be an integer >= 1, got {describe(value)}")
     return int(value)
 
 
@@ -109,7 +110,7 @@ class PunchGeometry:
         patch = positive("load_patch", self.load_patch)
         object.__setattr__(self, "load_patch", patch)
         if patch > 2.0 * self.punch_half_width * (1 + _ON_GRID):
-            raise ValueError(f"load_patch {patch!r} mm is wider than the punch")
+            raise ValueError(f"load_patch {describe(patch)} mm is wider than the punch")
         if n_punch == 1 and not self._patch_on_uniform_grid():
             raise ValueError("load_patch must cover the whole punch when n_punch = 1 (no edge to insert)")
 

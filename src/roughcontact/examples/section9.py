@@ -7,6 +7,7 @@ stresses in N/mm²; forces in N. Each number cites where the paper prints it.
 from __future__ import annotations
 
 from ..validation import positive
+from ..limits import describe
 
 __all__ = ["SURFACE", "TABLE4_M00", "BEAM", "BEAM_E_STAR", "PUNCH", "PUNCH_M00", "PUNCH_PSI", "N_PER_MM",
            "FIG18_CASES", "FIG18_NU", "fig18_preset", "FIG13_MARKERS", "MESH_CAPTIONS"]
@@ -79,7 +80,7 @@ def fig18_preset(case, k_N, length_unit="mm"):
     from ..interface.friction import OrthotropicHardening  # here: the CLI reads this module's data without numba
 
     if case not in FIG18_CASES:
-        raise ValueError(f"case must be one of {sorted(FIG18_CASES)}, got {case!r}")
+        raise ValueError(f"case must be one of {sorted(FIG18_CASES)}, got {describe(case)}")
     if length_unit not in _LENGTH_PER_MM:
         raise ValueError(f"length_unit must be one of {sorted(_LENGTH_PER_MM)}")
     k_N = positive("k_N", k_N)

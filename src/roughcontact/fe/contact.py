@@ -34,6 +34,7 @@ import numpy as np
 
 from ..interface import InterfaceLaw, friction
 from ..validation import positive
+from ..limits import describe
 
 __all__ = ["InterfaceMaterial", "LawResponse", "MICROMETRES_PER_MM", "TANGENTIAL", "statistical_interface"]
 
@@ -81,7 +82,7 @@ class InterfaceMaterial:
         friction._as_model(self.model)  # TypeError for anything else
         if self.tangential_form not in friction.TANGENTIAL_FORMS:
             raise ValueError(f"tangential_form must be one of {', '.join(friction.TANGENTIAL_FORMS)}, "
-                             f"got {self.tangential_form!r}")
+                             f"got {describe(self.tangential_form)}")
         object.__setattr__(self, "length_per_mm", positive("length_per_mm", self.length_per_mm))
         if isinstance(self.normal, InterfaceLaw):
             if self.k_T is not None:
@@ -163,11 +164,11 @@ def statistical_interface(surface, p0: float, *, E_star: float | None = None, ma
 
     if model is None:
         if tangential not in TANGENTIAL:
-            raise ValueError(f"tangential must be one of {', '.join(TANGENTIAL)}, got {tangential!r}")
+            raise ValueError(f"tangential must be one of {', '.join(TANGENTIAL)}, got {describe(tangential)}")
         if tangential == "coulomb":
             model = friction.IsotropicHardening(mu_m=positive("mu", mu if mu is not None else math.nan))
         elif mu is not None:
-            raise ValueError(f"mu is only used with tangential='coulomb' (got tangential={tangential!r})")
+            raise ValueError(f"mu is only used with tangential='coulomb' (got tangential={describe(tangential)})")
         else:
             model = friction.Frictionless() if tangential == "free" else friction.NoSlip()
     if (E_star is None) == (material is None):

@@ -19,6 +19,7 @@ import numpy as np
 
 from .element import QUAD9, QUAD16, Element
 from .quadrature import Rule, tensor_rule
+from ..limits import describe
 
 __all__ = ["InterfaceElement", "INTERFACE18", "INTERFACE32", "INTERFACES", "face_frame"]
 
@@ -66,7 +67,7 @@ def face_frame(face: Element, x_face: np.ndarray, xi: np.ndarray, lay=(1.0, 0.0,
     dA = np.linalg.norm(cross, axis=-1)
     bad = ~(dA > 0.0)  # also catches NaN
     if np.any(bad):
-        raise ValueError(f"interface face {int(np.argwhere(bad)[0, 0])}: degenerate (area element {dA[bad][0]!r})")
+        raise ValueError(f"interface face {int(np.argwhere(bad)[0, 0])}: degenerate (area element {describe(dA[bad][0])})")
     n = cross / dA[..., None]
     lay = np.asarray(lay, dtype=float)
     t1 = lay - np.einsum("cpk,k->cp", n, lay)[..., None] * n

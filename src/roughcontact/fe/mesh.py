@@ -30,6 +30,7 @@ import numpy as np
 
 from .element import HEX20, HEX21, HEX28, LOBATTO4, QUAD8, QUAD9, QUAD16, Element, Polynomials
 from .interface_element import INTERFACE18, INTERFACE32, InterfaceElement
+from ..limits import describe
 
 __all__ = [
     "CellBlock", "FaceSet", "InterfaceBlock", "Mesh", "LATERAL28", "graded", "box",
@@ -173,13 +174,13 @@ def graded(a: float, b: float, n: int, ratio: float = 1.0) -> np.ndarray:
     """n + 1 element boundaries from a to b (a < b, mm) whose sizes grow geometrically, the
     last size being ``ratio`` × the first (ratio < 1: small elements at b). Ends are exact."""
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
-        raise ValueError(f"graded: n must be an integer >= 1, got {n!r}")
+        raise ValueError(f"graded: n must be an integer >= 1, got {describe(n)}")
     if not (np.isfinite(a) and np.isfinite(b) and a < b):
-        raise ValueError(f"graded: need finite a < b, got a={a!r}, b={b!r}")
+        raise ValueError(f"graded: need finite a < b, got a={describe(a)}, b={describe(b)}")
     if not (np.isfinite(ratio) and ratio > 0):
-        raise ValueError(f"graded: ratio must be finite and > 0, got {ratio!r}")
+        raise ValueError(f"graded: ratio must be finite and > 0, got {describe(ratio)}")
     if n == 1 and ratio != 1.0:
-        raise ValueError(f"graded: one element has no size ratio, got ratio={ratio!r}")
+        raise ValueError(f"graded: one element has no size ratio, got ratio={describe(ratio)}")
     q = ratio ** (1.0 / (n - 1)) if n > 1 else 1.0
     sizes = q ** np.arange(n)
     edges = a + (b - a) * np.concatenate([[0.0], np.cumsum(sizes)]) / sizes.sum()
@@ -272,9 +273,9 @@ def box(x_edges, y_edges, z_edges, *, contact_face: str | None = None, family: s
     edges = [_check_edges(e, a) for e, a in zip((x_edges, y_edges, z_edges), "xyz")]
     n = [e.size - 1 for e in edges]
     if family not in _TRANSITION:
-        raise ValueError(f"box: family must be one of {sorted(_TRANSITION)}, got {family!r}")
+        raise ValueError(f"box: family must be one of {sorted(_TRANSITION)}, got {describe(family)}")
     if contact_face not in (None, "bottom", "top"):
-        raise ValueError(f"box: contact_face must be None, 'bottom' or 'top', got {contact_face!r}")
+        raise ValueError(f"box: contact_face must be None, 'bottom' or 'top', got {describe(contact_face)}")
 
     # (block name, element, z layers, flip of reference axes): "top" turns the element upside
     # down by a rotation about x (ζ → −ζ with η → −η keeps det J > 0)
@@ -332,10 +333,10 @@ def box(x_edges, y_edges, z_edges, *, contact_face: str | None = None, family: s
 # ---------------------------------------------------------------------------------------------
 def _face_set(mesh: Mesh, name: str) -> tuple[FaceSet, InterfaceElement]:
     if name not in mesh.face_sets:
-        raise ValueError(f"no face set {name!r} in mesh {mesh.name!r} (have {sorted(mesh.face_sets)})")
+        raise ValueError(f"no face set {describe(name)} in mesh {describe(mesh.name)} (have {sorted(mesh.face_sets)})")
     fs = mesh.face_sets[name]
     if fs.face_element.name not in _INTERFACE_OF:
-        raise ValueError(f"face set {name!r} has {fs.face_element.name} faces; "
+        raise ValueError(f"face set {describe(name)} has {fs.face_element.name} faces; "
                          "interface elements need quad9 or quad16 faces")
     return fs, _INTERFACE_OF[fs.face_element.name]
 
@@ -349,7 +350,7 @@ def _with(mesh: Mesh, **changes) -> Mesh:
 
 def _check_new_interface(mesh: Mesh, interface_name: str):
     if interface_name in {i.name for i in mesh.interfaces}:
-        raise ValueError(f"mesh {mesh.name!r} already has an interface {interface_name!r}")
+        raise ValueError(f"mesh {describe(mesh.name)} already has an interface {describe(interface_name)}")
 
 
 def rigid_base_interface(mesh: Mesh, face_set: str = "contact", interface_name: str = "interface",
@@ -360,7 +361,7 @@ def rigid_base_interface(mesh: Mesh, face_set: str = "contact", interface_name: 
     fs, element = _face_set(mesh, face_set)
     _check_new_interface(mesh, interface_name)
     if base in mesh.node_sets:
-        raise ValueError(f"mesh {mesh.name!r} already has a node set {base!r}")
+        raise ValueError(f"mesh {describe(mesh.name)} already has a node set {describe(base)}")
     side_b = fs.face_nodes[:, _swap(fs.face_element)]  # reversed: the outward normal turns inward
     body, inverse = np.unique(side_b, return_inverse=True)
     new = mesh.n_nodes + np.arange(body.size, dtype=np.int64)
@@ -374,7 +375,7 @@ def merge(a: Mesh, b: Mesh) -> Mesh:
     """Both meshes in one (b's nodes numbered after a's, no nodes merged): blocks, node sets,
     face sets and interfaces renamed "<mesh name>.<name>", e.g. "punch.zmax"."""
     if a.name == b.name:
-        raise ValueError(f"merge: both meshes are named {a.name!r}; their sets would collide")
+        raise ValueError(f"merge: both meshes are named {describe(a.name)}; their sets would collide")
     parts = []
     for m, node_off, block_off in ((a, 0, 0), (b, a.n_nodes, len(a.blocks))):
         p = f"{m.name}."
@@ -424,7 +425,7 @@ def interface_between(mesh: Mesh, face_set_a: str, face_set_b: str, interface_na
     fb, element_b = _face_set(mesh, face_set_b)
     _check_new_interface(mesh, interface_name)
     if element_b is not element or len(fa) < len(fb):
-        raise ValueError(f"face sets {face_set_a!r} and {face_set_b!r} differ in face type or count")
+        raise ValueError(f"face sets {describe(face_set_a)} and {describe(face_set_b)} differ in face type or count")
     nodes_a, inverse = np.unique(fa.face_nodes, return_inverse=True)
     nodes_b = np.unique(fb.face_nodes)
     if nodes_a.size < nodes_b.size or np.intersect1d(nodes_a, nodes_b).size:
@@ -440,6 +441,6 @@ def interface_between(mesh: Mesh, face_set_a: str, face_set_b: str, interface_na
     keys_a = [tuple(k) for k in np.sort(side_b, axis=1)]
     paired = np.array([k in key_of_b for k in keys_a], dtype=bool) & np.all(side_b >= 0, axis=1)
     if {keys_a[i] for i in np.flatnonzero(paired)} != key_of_b or paired.sum() != len(fb):
-        raise ValueError(f"the faces of {face_set_a!r} and {face_set_b!r} do not coincide one to one")
+        raise ValueError(f"the faces of {describe(face_set_a)} and {describe(face_set_b)} do not coincide one to one")
     block = InterfaceBlock(interface_name, element, np.hstack([fa.face_nodes[paired], side_b[paired]]))
     return _with(mesh, interfaces=mesh.interfaces + (block,))

@@ -15,6 +15,8 @@ from typing import NamedTuple
 import numpy as np
 from numpy.polynomial import legendre
 
+from ..limits import describe
+
 __all__ = ["Rule", "gauss_legendre", "gauss_lobatto", "tensor_rule", "RULES"]
 
 
@@ -69,7 +71,7 @@ def _tensor_rule(kind: str, counts: tuple[int, ...]) -> Rule:
     try:
         one = RULES[kind]
     except KeyError:
-        raise ValueError(f"rule kind must be one of {sorted(RULES)}, got {kind!r}") from None
+        raise ValueError(f"rule kind must be one of {sorted(RULES)}, got {describe(kind)}") from None
     rules = [one(int(n)) for n in counts]
     pts = np.array([p[::-1] for p in itertools.product(*[r.points[:, 0] for r in reversed(rules)])])
     wts = np.array([np.prod(w[::-1]) for w in itertools.product(*[r.weights for r in reversed(rules)])])

@@ -72,6 +72,7 @@ from ..interface import friction
 from . import assembly, ordering
 from .contact import InterfaceMaterial
 from .interface_points import InterfacePoints, interface_forces, interface_points, interface_tangent
+from ..limits import describe
 
 __all__ = ["ContactModel", "NewtonOptions", "Increment", "Solution", "ConvergenceError", "LawRangeError", "solve"]
 
@@ -125,9 +126,9 @@ class NewtonOptions:
     def __post_init__(self):
         if self.linear_solver not in LINEAR_SOLVERS:
             raise ValueError(f"linear_solver must be one of {', '.join(map(repr, LINEAR_SOLVERS))}, "
-                             f"got {self.linear_solver!r}")
+                             f"got {describe(self.linear_solver)}")
         if self.blas_threads is not None and not (isinstance(self.blas_threads, int) and self.blas_threads >= 1):
-            raise ValueError(f"blas_threads must be a positive integer or None, got {self.blas_threads!r}")
+            raise ValueError(f"blas_threads must be a positive integer or None, got {describe(self.blas_threads)}")
         if not (self.max_iterations >= 1 and self.max_cutbacks >= 0):
             raise ValueError("max_iterations must be >= 1 and max_cutbacks >= 0")
         for name in ("force_rtol", "force_atol", "displacement_rtol", "displacement_atol"):

@@ -180,6 +180,7 @@ from .kernels import (  # noqa: F401  (the state layout and status codes are par
     OPEN, SLIP, STICK, T_N, T_X, T_Y, U_N, UP_X, UP_Y, _iso_kernel, _no_limit_kernel, _ortho_kernel,
 )
 from .normal_law import InterfaceLaw
+from ..limits import describe
 
 __all__ = [
     "NSTATE", "T_X", "T_Y", "T_N", "U_N", "UP_X", "UP_Y", "KAPPA_X", "KAPPA_Y", "KAPPA",
@@ -227,7 +228,7 @@ class OrthotropicHardening:
             object.__setattr__(self, name, positive(name, getattr(self, name), allow_zero=True))
         k = float(self.k)
         if not math.isfinite(k):
-            raise ValueError(f"k must be finite, got {self.k!r}")
+            raise ValueError(f"k must be finite, got {describe(self.k)}")
         object.__setattr__(self, "k", k)
 
     def params(self) -> np.ndarray:
@@ -329,11 +330,11 @@ def initial_state(shape=(), *, u_N=0.0, k_N=None):
     law, u_N = 0 is its reference state p_N = p0). ``shape`` is the point shape ((): one point)."""
     shape = (shape,) if isinstance(shape, (int, np.integer)) else tuple(shape)
     if not np.all(np.isfinite(np.asarray(u_N, dtype=float))):
-        raise ValueError(f"u_N must be finite, got {u_N!r}")
+        raise ValueError(f"u_N must be finite, got {describe(u_N)}")
     if k_N is not None and not isinstance(k_N, InterfaceLaw):
         k = np.asarray(k_N, dtype=float)
         if not np.all(np.isfinite(k) & (k > 0.0)):
-            raise ValueError(f"k_N must be finite and > 0 (or an InterfaceLaw), got {k_N!r}")
+            raise ValueError(f"k_N must be finite and > 0 (or an InterfaceLaw), got {describe(k_N)}")
     s = np.zeros(shape + (NSTATE,))
     s[..., U_N] = u_N
     if k_N is not None:
@@ -434,10 +435,10 @@ def update(model, state, du, k_N, k_Tx=None, k_Ty=None, *, tol=1e-12,
     """
     model = _as_model(model)
     if not isinstance(tangential, str) or tangential not in _FORM_CODES:
-        raise ValueError(f"tangential must be one of {', '.join(TANGENTIAL_FORMS)}, got {tangential!r}")
+        raise ValueError(f"tangential must be one of {', '.join(TANGENTIAL_FORMS)}, got {describe(tangential)}")
     tol = float(tol)
     if not (0.0 < tol <= 1e-6):
-        raise ValueError(f"tol must be in (0, 1e-6], got {tol!r}")
+        raise ValueError(f"tol must be in (0, 1e-6], got {describe(tol)}")
     stiffness, tab, h_ref = _stiffness_inputs(k_N, k_Tx, k_Ty)
     shape, s_old, d, st = _prepare(state, du, stiffness)
     n = s_old.shape[0]

@@ -92,6 +92,7 @@ from ..statistics.surface import SpectralMoments
 from ..validation import choice, instance, positive
 from .kernels import _closure_law_array, closure_law
 from .tangential import kn_over_kt
+from ..limits import describe
 
 __all__ = ["LEVELS", "NormalLawTable", "InterfaceLaw", "mindlin_kT_over_kN"]
 
@@ -189,9 +190,9 @@ def _pair(name, value):
     try:
         a, b = (float(v) for v in value)
     except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a pair of numbers, got {value!r}") from None
+        raise ValueError(f"{name} must be a pair of numbers, got {describe(value)}") from None
     if not (math.isfinite(a) and math.isfinite(b) and a < b):
-        raise ValueError(f"{name} must be two finite numbers in increasing order, got {value!r}")
+        raise ValueError(f"{name} must be two finite numbers in increasing order, got {describe(value)}")
     return a, b
 
 
@@ -256,7 +257,7 @@ class NormalLawTable:
             E = material.E_star
         rtol = float(rtol)
         if not (1e-9 <= rtol <= 1e-2):
-            raise ValueError(f"rtol must lie in [1e-9, 1e-2], got {rtol!r}")
+            raise ValueError(f"rtol must lie in [1e-9, 1e-2], got {describe(rtol)}")
         if (pressure_range is None) == (s_range is None):
             raise ValueError("give exactly one of pressure_range=(p_light, p_max) and s_range=(s_min, s_max)")
 
@@ -268,7 +269,7 @@ class NormalLawTable:
         else:
             p_light, p_max = _pair("pressure_range", pressure_range)
             if p_light <= 0.0:
-                raise ValueError(f"pressure_range must be positive, got {pressure_range!r}")
+                raise ValueError(f"pressure_range must be positive, got {describe(pressure_range)}")
             h_min = direct.separation_for(p_max * (1.0 + _END_MARGIN))
             h_max = direct.separation_for(p_light * (1.0 - _END_MARGIN))
         # A/A0 is largest at the heavy end: warn past the model's quantitative range, refuse A/A0 > 1
@@ -331,7 +332,7 @@ class NormalLawTable:
         twentieth of a small FE run's wall time, for this one root.)"""
         p = float(p)
         if not (self.p_light <= p <= self.p_max):
-            raise ValueError(f"pressure {p!r} is outside the table range [{self.p_light:g}, {self.p_max:g}]")
+            raise ValueError(f"pressure {describe(p)} is outside the table range [{self.p_light:g}, {self.p_max:g}]")
         target = math.log(p)
         # q decreases with h: the interval whose end values bracket ln p
         i = min(int(np.searchsorted(-self.q, -target, side="right")) - 1, self.n_nodes - 2)
@@ -396,7 +397,7 @@ class _DirectIntegration:
             for x, p, k in zip(missing, c.pressure, c.stiffness):
                 if not (p > 0.0 and k > 0.0 and math.isfinite(p) and math.isfinite(k)):
                     raise ValueError(
-                        f"W/A0 = {p!r}, K/A0 = {k!r} at h = {x:g} (s = {x / self.surface.height_std:g}): "
+                        f"W/A0 = {describe(p)}, K/A0 = {describe(k)} at h = {x:g} (s = {x / self.surface.height_std:g}): "
                         "not positive and finite, the range reaches too far (light end too light?)")
                 self.cache[x] = (float(p), float(k))
         vals = np.array([self.cache[float(x)] for x in h])
@@ -463,7 +464,7 @@ def _finite_array(name, x) -> np.ndarray:
     try:
         a = np.asarray(x, dtype=float)
     except (TypeError, ValueError):
-        raise ValueError(f"{name} must be real numbers, got {x!r}") from None
+        raise ValueError(f"{name} must be real numbers, got {describe(x)}") from None
     if not np.all(np.isfinite(a)):
         raise ValueError(f"{name} must be finite, got {a[~np.isfinite(a)].reshape(-1)[:3]}")
     return a
@@ -503,7 +504,7 @@ def _factor_pair(kT_over_kN):
     try:
         ax, ay = kT_over_kN
     except ValueError:
-        raise ValueError(f"kT_over_kN must be a factor or a pair (x, y), got {kT_over_kN!r}") from None
+        raise ValueError(f"kT_over_kN must be a factor or a pair (x, y), got {describe(kT_over_kN)}") from None
     return ax, ay
 
 
@@ -531,7 +532,7 @@ class InterfaceLaw:
             raise TypeError(f"table must be a NormalLawTable, got {type(self.table).__name__}")
         h_ref = float(self.h_ref)
         if not (self.table.h_min <= h_ref <= self.table.h_light):
-            raise ValueError(f"h_ref = {self.h_ref!r} is outside the table [{self.table.h_min:g}, "
+            raise ValueError(f"h_ref = {describe(self.h_ref)} is outside the table [{self.table.h_min:g}, "
                              f"{self.table.h_light:g}]")
         object.__setattr__(self, "h_ref", h_ref)
         object.__setattr__(self, "kT_over_kN_x", positive("kT_over_kN_x", self.kT_over_kN_x))

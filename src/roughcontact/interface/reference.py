@@ -17,6 +17,7 @@ from .kernels import (
     DISSIPATION, KAPPA, KAPPA_X, KAPPA_Y, OPEN, SLIP, STICK, T_N, T_X, T_Y, U_N, UP_X, UP_Y,
 )
 from .normal_law import InterfaceLaw, _hermite_power_coefficients
+from ..limits import describe
 
 __all__ = ["reference_closure_law", "reference_update"]
 
@@ -28,7 +29,7 @@ def reference_closure_law(u_n, h_ref, tab):
     h = h_ref - u_n
     hr = float(np.real(h))
     if hr < tab[0, 0]:
-        raise ValueError(f"h = {hr!r} is beyond the heavy end of the table (h_min = {tab[0, 0]!r})")
+        raise ValueError(f"h = {describe(hr)} is beyond the heavy end of the table (h_min = {describe(tab[0, 0])})")
     if hr > tab[-1, 0]:
         p_light, d_light = math.exp(tab[-1, 1]), tab[-1, 2]
         z = 1.0 + 0.5 * d_light * (h - tab[-1, 0])
@@ -55,7 +56,7 @@ def _ref_trial(tangential, s_old, stiffness):
     ``stiffness(u_N)`` -> (p_N, k_N, k_Tx, k_Ty); K_T(u_N,n) from the start closure (it raises
     beyond the table); an open start state (K_T(u_N,n) = 0) has t_n = 0 and u^e_T,n = 0."""
     if tangential not in TANGENTIAL_FORMS:
-        raise ValueError(f"tangential must be one of {', '.join(TANGENTIAL_FORMS)}, got {tangential!r}")
+        raise ValueError(f"tangential must be one of {', '.join(TANGENTIAL_FORMS)}, got {describe(tangential)}")
     u0 = s_old[U_N]
     t_n = np.array([s_old[T_X], s_old[T_Y]])
     if tangential != "incremental-end":

@@ -64,6 +64,7 @@ import numpy as np
 from ..asperity.ellipse import e1_from_lambda, elliptic_BD
 from ..statistics.surface import SpectralMoments
 from ..validation import instance
+from ..limits import describe
 
 __all__ = ["NU_MIN", "NU_MAX", "kn_over_kt", "representative_aspect"]
 
@@ -83,12 +84,12 @@ def _validate(b2_over_a2, nu) -> tuple[np.ndarray, np.ndarray]:
         raise ValueError("b2_over_a2 and nu must be real numbers") from None
     if not np.all(np.isfinite(r) & (r > 0.0)):
         bad = r[~(np.isfinite(r) & (r > 0.0))].reshape(-1)[0]
-        raise ValueError(f"b2_over_a2 = B^2/A^2 must be finite and > 0, got {float(bad)!r}")
+        raise ValueError(f"b2_over_a2 = B^2/A^2 must be finite and > 0, got {describe(float(bad))}")
     ok = (v > NU_MIN) & (v <= NU_MAX)
     if not np.all(ok):
         bad = v[~ok].reshape(-1)[0]
         raise ValueError(
-            f"nu must satisfy -1 < nu <= 0.5 (physical Poisson's ratio), got {float(bad)!r}"
+            f"nu must satisfy -1 < nu <= 0.5 (physical Poisson's ratio), got {describe(float(bad))}"
         )
     try:
         r, v = np.broadcast_arrays(r, v)
