@@ -136,8 +136,22 @@ def _surfaces_from_files(args, files, second) -> SpectralMoments:
     if second is not None:
         surface = surface.combined_with(SpectralMoments(*second))
     if unit is not None:
+        given = args.moments_unit  # export's --moments-unit: must not contradict what the file states
+        if given is not None and _length_unit(given, "--moments-unit") != unit:
+            raise CLIError(f"--moments-unit {given} contradicts {files[0]}, whose moments are in {unit}: drop "
+                           f"--moments-unit (the file's unit is used; --length-unit converts the output)")
         args.moments_unit = unit
     return surface
+
+
+def _length_unit(text: str, option: str) -> str:
+    """The canonical name of the length unit ``text`` (readers.lengths.normalise) or CLIError naming ``option``."""
+    from ..readers import lengths
+
+    try:
+        return lengths.normalise(text)
+    except ValueError as exc:
+        raise CLIError(f"{option}: {exc}") from None
 
 
 def _tangential(args, surface, stiffness) -> tuple[dict, dict]:
@@ -245,6 +259,9 @@ def _run_elastoplastic(args) -> dict[str, Any]:
     surface = _surface_from(args)
     if args.pressure is not None and args.method != "production":
         raise ValueError("--pressure solves with the production integrators: drop --method reference")
+    if not 0.0 < args.yield_coefficient < float("inf"):  # K_Y = 0 divides by zero deriving Y from psi
+        raise CLIError(f"--yield-coefficient {args.yield_coefficient:g}: K in p_max = K Y at first yield "
+                       "(eq. 63) must be finite and positive (default 1.62)")
     material = resolve_material(
         surface, E_star=effective_modulus_from(args), psi=args.psi, Y=args.Y, closure=args.closure,
         H=args.H, yield_coefficient=args.yield_coefficient, c_h=args.c_h,
@@ -326,11 +343,13 @@ def _render_elastic(payload: dict[str, Any]) -> str:
     else:
         lines_note = "pressure_requested: the column above (load control)"
     units = payload["units"]
-    w = [max(16, len(c) + 2) for c in cols]
+    brackets = [f"[{units.get(c, '').split(' (')[0]}]" for c in cols]
+    # each column as wide as its name and its unit, plus two spaces: headers never run together
+    w = [max(16, len(c) + 2, len(b) + 2) for c, b in zip(cols, brackets)]
     lines = [
         head,
         "".join(f"{c:>{wc}}" for c, wc in zip(cols, w)),
-        "".join(f"{'[' + units.get(c, '').split(' (')[0] + ']':>{wc}}" for c, wc in zip(cols, w)),
+        "".join(f"{b:>{wc}}" for b, wc in zip(brackets, w)),
     ]
     for row in zip(*(payload[c] for c in cols)):
         lines.append("".join(f"{v:>{wc}.8g}" for v, wc in zip(row, w)))

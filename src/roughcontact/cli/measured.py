@@ -14,16 +14,30 @@ from . import (
 __all__ = ["add_commands"]
 
 FORMATS = ("abaqus", "calculix", "csv")  # interface.export.FORMATS
+#: what the table of each format cannot express; the k_T(p) entry applies with --mu only
+#: (:func:`_cannot_express` adds it, naming the pressure k_T is taken at)
 CANNOT_EXPRESS = {
-    "abaqus": ["k_T(p): the stick stiffness follows k_N(p); *FRICTION takes one elastic slip (k_T matches at p0 only)",
-               "the orthotropic / hardening friction of section 8.1",
+    "abaqus": ["the orthotropic / hardening friction of section 8.1",
                "elasto-plastic unloading (the table is the loading curve)"],
-    "calculix": ["k_T(p): *FRICTION takes one stick slope (k_T(p0))",
-                 "the orthotropic / hardening friction of section 8.1",
+    "calculix": ["the orthotropic / hardening friction of section 8.1",
                  "elasto-plastic unloading (the table is the loading curve)",
                  "more than 200 rows (resampled evenly in overclosure) and pressures beyond the last row (held constant)"],
     "csv": [],
 }
+#: the k_T(p) entry of CANNOT_EXPRESS, with the pressure P of k_T(P) (--kt-at or its default)
+KT_CANNOT_EXPRESS = {
+    "abaqus": "k_T(p): the stick stiffness follows k_N(p); *FRICTION takes one elastic slip (k_T matches at p = {p} only)",
+    "calculix": "k_T(p): *FRICTION takes one stick slope (k_T at p = {p})",
+}
+
+
+def _cannot_express(fmt: str, stick: dict | None, kt_at_given: bool) -> list[str]:
+    """CANNOT_EXPRESS of ``fmt``, with the k_T(p) entry where a *FRICTION block is written
+    (``stick``: interface.export.stick_stiffness), naming the pressure k_T is taken at."""
+    if stick is None:
+        return list(CANNOT_EXPRESS[fmt])
+    where = f"{stick['pressure']:.6g}" + (" (--kt-at)" if kt_at_given else " (the default: the geometric middle)")
+    return [KT_CANNOT_EXPRESS[fmt].format(p=where), *CANNOT_EXPRESS[fmt]]
 
 
 def add_commands(sub, parents) -> None:
@@ -51,9 +65,9 @@ def _add_export(sub, parents) -> None:
     p.add_argument("--rtol", type=_real, default=1e-3, help="relative error of the table against the law (default 1e-3)")
     p.add_argument("--seating-pressure", dest="p0", type=_real, default=None, metavar="P0",
                    help="overclosure zero at this pressure (unit of E*); default: at the mean planes")
-    p.add_argument("--moments-unit", dest="moments_unit", default="um", metavar="NAME",
-                   help="length unit of the moments (default um); with a known --length-unit (m, mm, um, nm) the "
-                   "overclosures are converted")
+    p.add_argument("--moments-unit", dest="moments_unit", default=None, metavar="NAME",
+                   help="length unit of the moments (default: the --moments file's, else um); with a known "
+                   "--length-unit (m, mm, um, nm) the overclosures are converted")
     p.add_argument("--length-unit", dest="length_unit", default=None, metavar="NAME",
                    help="output length unit (default: the moments' unit); m, mm, um, nm are converted from "
                    "--moments-unit, any other name needs --length-scale")
@@ -80,11 +94,12 @@ def _add_export(sub, parents) -> None:
 def _run_export(args) -> dict[str, Any]:
     from ..contact.closures import resolve_material
     from ..contact.validity import relay_warnings
-    from ..interface.export import (CALCULIX_MAX_ROWS, format_table, friction_block, overclosure_table,
-                                    stick_stiffness, unit_name)
+    from ..interface.export import (CALCULIX_MAX_ROWS, NonFiniteTableError, format_table, friction_block,
+                                    overclosure_table, stick_stiffness, unit_name)
     from .contact import _surface_from
 
-    surface = _surface_from(args)
+    surface = _surface_from(args)  # a --moments file that states its unit sets args.moments_unit
+    args.moments_unit = args.moments_unit or "um"
     E_star = effective_modulus_from(args)
     if args.law == "elastic":
         if args.psi is not None or args.Y is not None:
@@ -111,11 +126,15 @@ def _run_export(args) -> dict[str, Any]:
                                   seating_pressure=args.p0, max_rows=max_rows, **law)
         scales = {"length_scale": length_scale, "stress_scale": args.stress_scale}
         friction, stick = "", None
-        if args.mu is not None:
-            friction = friction_block(table, args.fmt, args.mu, args.kt_over_kn, kt_at=args.kt_at, **scales)
-            stick = stick_stiffness(table, args.kt_over_kn, args.kt_at, **scales)
-        text = format_table(table, args.fmt, length_unit=length_unit, stress_unit=args.stress_unit,
-                            moments_unit=args.moments_unit, friction=friction, **scales)
+        try:  # every row checked before any text is made: nothing is written or printed otherwise
+            if args.mu is not None:
+                friction = friction_block(table, args.fmt, args.mu, args.kt_over_kn, kt_at=args.kt_at, **scales)
+                stick = stick_stiffness(table, args.kt_over_kn, args.kt_at, **scales)
+            text = format_table(table, args.fmt, length_unit=length_unit, stress_unit=args.stress_unit,
+                                moments_unit=args.moments_unit, friction=friction, **scales)
+        except NonFiniteTableError as exc:  # a computed value that is not finite: exit 1
+            written = "no table printed" if args.output is None else f"-o {args.output} not written"
+            raise CLIError(f"{exc} ({written}; check --stress-scale and --length-scale)", code=1) from None
     if args.output is not None:
         with writing(args.output, "-o") as tmp:
             tmp.write_text(text)
@@ -133,7 +152,7 @@ def _run_export(args) -> dict[str, Any]:
             "mu": args.mu, "kT_over_kN": args.kt_over_kn, "kt_at": stick["pressure"], "k_T": stick["k_T"],
             "k_T_range": [list(r) for r in stick["range"]], "k_T_factor": stick["factor"],
             "kt_at_default": args.kt_at is None},
-        "cannot_express": CANNOT_EXPRESS[args.fmt],
+        "cannot_express": _cannot_express(args.fmt, stick, args.kt_at is not None),
         "output": None if args.output is None else str(args.output),
         "table": [[float(p) * args.stress_scale, float(c) * length_scale]
                   for p, c in zip(table.pressure, table.overclosure)],

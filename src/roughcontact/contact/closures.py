@@ -32,12 +32,14 @@ by the constant factor (2/π)H/(K_Y Y) = 1.110 with Tabor's H) — tests/asperit
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 from ..asperity import TABOR_RATIO, AsperityMaterial, yield_strength_for_plasticity_index
 from ..statistics.surface import SpectralMoments
+from ..validation import positive
 
-__all__ = ["Closure", "CLOSURES", "DEFAULTS", "default_closure", "resolve_material"]
+__all__ = ["Closure", "CLOSURES", "DEFAULTS", "default_closure", "resolve_material", "check_hardness"]
 
 
 @dataclass(frozen=True)
@@ -82,6 +84,28 @@ def default_closure(psi, Y) -> str:
     return "material" if Y is not None else "yield-from-psi"
 
 
+def check_hardness(H, Y, E_star, how: str = "") -> None:
+    """ValueError unless a given hardness H lies strictly between the yield strength Y and E*
+    (all in one stress unit; ``H=None``, Tabor's default, passes).
+
+    Why: H is the mean pressure of a fully plastic indentation, H ≈ 2.8 Y (Tabor, *The Hardness
+    of Metals*, 1951; eq. (68) of the paper, H = Y/0.354); the mean pressure already reaches
+    1.1 Y at first yield (Johnson, *Contact Mechanics*, 1985, §6.2), so H ≤ Y is no metal's
+    hardness. A Hertz mean pressure p_m = (4E*/3π)(a/R) (Johnson eq. 4.25) equal to E* needs
+    a/R = 3π/4, far beyond the small-strain asperity theory the model rests on (real
+    materials have H/E* below ~0.1, diamond included), so H ≥ E* is unphysical for the model."""
+    if H is None:
+        return
+    h = positive("H (hardness)", H)
+    y, e = float(Y), float(E_star)
+    if not (math.isfinite(y) and math.isfinite(e)):
+        return  # AsperityMaterial reports a non-finite Y or E*
+    if not y < h < e:
+        ylabel = f"Y {how} = {y:.6g}" if how else f"Y = {y:.6g}"
+        raise ValueError(f"hardness H = {h:.6g} must lie between the yield strength and E*: {ylabel}, "
+                         f"E* = {e:.6g} (Tabor's H = Y/0.354 = {y / TABOR_RATIO:.6g}, eq. 68)")
+
+
 def resolve_material(
     surface: SpectralMoments,
     *,
@@ -100,7 +124,8 @@ def resolve_material(
     E_star, Y, H in one stress unit; ``psi`` dimensionless; ``closure`` one of CLOSURES (None →
     :func:`default_closure`). H defaults to Tabor's Y/0.354 (68) of the closure's Y (of the
     printed Y for "paper-literal"); K_v defaults to the continuous K_Y Y/H (to 0.354 K_Y for
-    "paper-literal"). Raises ValueError naming what is missing, extra or invalid.
+    "paper-literal"). A given H must lie strictly between the closure's Y and E*
+    (:func:`check_hardness`). Raises ValueError naming what is missing, extra or invalid.
     """
     if not isinstance(surface, SpectralMoments):
         raise TypeError(f"surface must be a SpectralMoments, got {type(surface).__name__}")
@@ -115,13 +140,18 @@ def resolve_material(
         raise ValueError(
             f"closure {name!r} {'needs' if spec.needs_yield_strength else 'does not take'} the yield strength Y"
         )
+    # before Y is derived from it: K_Y = 0 divides by zero in the yield-from-psi closure
+    yield_coefficient = positive("yield_coefficient K_Y (p_max = K_Y Y at first yield, eq. 63)", yield_coefficient)
     common = dict(yield_coefficient=yield_coefficient, c_h=c_h, wp_over_wc=wp_over_wc)
     if name == "material":
+        check_hardness(H, Y, E_star)
         return AsperityMaterial(E_star, Y, H=H, K_v=K_v, **common)
     # Y that makes plasticity_index(surface, material) equal psi at fixed E*, K_Y
     y_psi = yield_strength_for_plasticity_index(psi, surface, E_star, yield_coefficient)
     if name == "yield-from-psi":
+        check_hardness(H, y_psi, E_star, "derived from psi")
         return AsperityMaterial(E_star, y_psi, H=H, K_v=K_v, **common)
+    check_hardness(H, Y, E_star)
     # paper-literal: first yield at K_Y Y_psi, pressures from the printed Y
     h_printed = H if H is not None else AsperityMaterial(E_star, Y).H  # eq. (68)
     kv = K_v if K_v is not None else TABOR_RATIO * yield_coefficient

@@ -42,12 +42,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .. import limits
 from ..asperity import AsperityMaterial
 from ..statistics.surface import SpectralMoments
 from ..validation import choice, instance, positive
 from .normal_law import NormalLawTable
 
-__all__ = ["REFERENCES", "FORMATS", "OverclosureTable", "overclosure_table", "format_table",
+__all__ = ["REFERENCES", "FORMATS", "NonFiniteTableError", "OverclosureTable", "overclosure_table", "format_table",
            "friction_block", "parse_table", "CALCULIX_MAX_ROWS", "LENGTH_UNITS", "BEYOND_LAST_ROW",
            "unit_name", "length_scale_between", "representative_pressure", "stick_stiffness"]
 
@@ -72,6 +73,11 @@ BEYOND_LAST_ROW = {
 }
 #: longest unit name accepted (a name, not a sentence)
 _MAX_UNIT_NAME = 40
+
+
+class NonFiniteTableError(ValueError):
+    """A row of the table (or the stick stiffness) is not finite once scaled, e.g. pressures
+    times a ``stress_scale`` beyond the largest double: nothing of it may reach a deck."""
 
 
 def unit_name(option: str, name) -> str:
@@ -245,9 +251,20 @@ def overclosure_table(surface: SpectralMoments, *, pressure_range, E_star=None,
 # writing and reading the code's syntax
 # ---------------------------------------------------------------------------------------------
 def _rows(table, length_scale, stress_scale):
+    """The rows in the output units; NonFiniteTableError naming the first row that is not finite
+    (checked before any text is made, so a caller never writes part of a table)."""
     ls = positive("length_scale", length_scale)
     ss = positive("stress_scale", stress_scale)
-    return table.pressure * ss, table.overclosure * ls
+    with np.errstate(over="ignore", invalid="ignore"):  # reported below, row by row
+        p, c = table.pressure * ss, table.overclosure * ls
+    bad = ~(np.isfinite(p) & np.isfinite(c))
+    if bad.any():
+        i = int(np.argmax(bad))
+        raise NonFiniteTableError(
+            f"row {i + 1} of {p.size} is not finite: pressure {limits.describe(p[i])} = {table.pressure[i]:.6g} "
+            f"(unit of E*) x stress scale {ss:g}, overclosure {limits.describe(c[i])} = {table.overclosure[i]:.6g} "
+            f"(moments' unit) x length scale {ls:g}")
+    return p, c
 
 
 def format_table(table: OverclosureTable, fmt: str, *, length_scale=1.0, stress_scale=1.0,
@@ -329,7 +346,13 @@ def stick_stiffness(table: OverclosureTable, kT_over_kN, pressure=None, *, lengt
         raise ValueError(f"the k_T pressure {p:g} must lie in the table's pressure range [{lo:g}, {hi:g}]")
     to_out = a * positive("stress_scale", stress_scale) / positive("length_scale", length_scale)
     k_lo, k_hi = (_law_at_pressure(table, x) * to_out for x in (lo, hi))
-    return {"pressure": p * stress_scale, "k_T": _law_at_pressure(table, p) * to_out,
+    k_p = _law_at_pressure(table, p) * to_out
+    for name, value in (("k_T", k_p), (f"k_T at p_min = {lo:g}", k_lo), (f"k_T at p_max = {hi:g}", k_hi),
+                        (f"pressure of k_T, {p:g} x stress scale", p * stress_scale)):
+        if not math.isfinite(value):
+            raise NonFiniteTableError(f"the friction's {name} is not finite ({limits.describe(value)}) with "
+                                      f"k_T/k_N = {a:g}, stress scale {stress_scale:g}, length scale {length_scale:g}")
+    return {"pressure": p * stress_scale, "k_T": k_p,
             "range": [(lo * stress_scale, k_lo), (hi * stress_scale, k_hi)], "factor": k_hi / k_lo}
 
 
@@ -351,6 +374,8 @@ def friction_block(table: OverclosureTable, fmt: str, mu, kT_over_kN, *, kt_at=N
     if fmt == "calculix":
         return f"{note}\n*FRICTION\n{_FMT.format(mu)}, {_FMT.format(k['k_T'])}"
     gamma = mu * k["pressure"] / k["k_T"]
+    if not math.isfinite(gamma):
+        raise NonFiniteTableError(f"the elastic slip mu p/k_T = {limits.describe(gamma)} is not finite")
     return f"{note}\n*FRICTION, ELASTIC SLIP={_FMT.format(gamma)}\n{_FMT.format(mu)}"
 
 

@@ -5,13 +5,16 @@ input files (sweep configurations, FE interface laws) read.
 Accepted: a mapping with the five moments m00, m20, m02, m40, m04 at its top level or under
 ``moments``, and the length unit as ``unit`` (``"um"``) or, as the command line's JSON writes it,
 ``units: {m00: "um^2", ...}``. Moments in L²/–/L⁻² convert between units as m00·f², m40·f⁻²
-(f = the size of the old unit in the new one)."""
+(f = the size of the old unit in the new one). Each moment must be a JSON number (not ``true``,
+which Python would read as 1, nor a string). Files are read through :mod:`roughcontact.limits`
+(a regular file within the size limit, JSON nesting bounded)."""
 
 from __future__ import annotations
 
-import json
+import numbers
 from pathlib import Path
 
+from .. import limits
 from ..statistics.surface import SpectralMoments
 from . import lengths
 
@@ -29,6 +32,11 @@ def moments_from_mapping(mapping, *, where: str = "moments") -> tuple[SpectralMo
     if not isinstance(source, dict) or not all(k in source for k in _FIVE):
         missing = [k for k in _FIVE if not isinstance(source, dict) or k not in source]
         raise ValueError(f"{where}: the moments {', '.join(missing)} are missing")
+    for k in _FIVE:
+        value = source[k]
+        # bool is an int in Python: `true` would silently be m00 = 1
+        if isinstance(value, bool) or not isinstance(value, numbers.Real):
+            raise ValueError(f"{where}: {k} must be a number, got {limits.describe(value)}")
     unit = source.get("unit", mapping.get("unit"))
     units = source.get("units", mapping.get("units"))
     if unit is None and isinstance(units, dict) and isinstance(units.get("m00"), str):
@@ -48,14 +56,18 @@ def moments_from_mapping(mapping, *, where: str = "moments") -> tuple[SpectralMo
 
 
 def read_json(path, what: str = "file"):
-    """The content of a JSON file; ValueError (one line) if it is missing or not JSON."""
-    file = Path(path)
-    if not file.is_file():
+    """The content of a JSON file; ValueError (one line) if it is missing, not a regular file,
+    beyond the size limit, not UTF-8, not JSON or nested deeper than the nesting limit
+    (limits.read_text, limits.parse_json)."""
+    if not Path(path).exists():
         raise ValueError(f"no such {what}: {path}")
+    text = limits.read_text(path, what)
     try:
-        return json.loads(file.read_text())
-    except (json.JSONDecodeError, UnicodeDecodeError) as exc:
-        raise ValueError(f"{path}: not a JSON file ({exc})") from None
+        return limits.parse_json(text, str(path))
+    except limits.InputLimitError:
+        raise
+    except ValueError as exc:  # a syntax error or NaN: say which file is not JSON
+        raise ValueError(str(exc).replace(f"{path}: not JSON (", f"{path}: not a JSON file (", 1)) from None
 
 
 def load_moments(path) -> tuple[SpectralMoments, str | None]:
