@@ -66,7 +66,7 @@ def add_command(sub, parents) -> None:
 
 def _map_in_unit(args):
     """(heights, dx, dy, source payload) in --unit, from the file and the unit options."""
-    from ..readers import read_height_map
+    from ..readers import UnitWarning, read_height_map, unit_warning
     from ..readers.lengths import factor, normalise
 
     found = read_height_map(args.file, layout=args.layout, channel=args.channel)
@@ -77,6 +77,10 @@ def _map_in_unit(args):
     for name, given, in_file in (("--xy-unit", args.xy_unit, found.xy_unit), ("--z-unit", args.z_unit, found.z_unit)):
         if given and in_file and normalise(given) != in_file:
             notes.append(f"{name} {given} overrides the file's {in_file}")
+    doubt = unit_warning(found, xy_unit, z_unit, args.file)
+    if doubt:  # e.g. metres taken as µm: said (note and warning), not refused
+        notes.append(doubt)
+        warnings.warn(UnitWarning(doubt))
     # --dx, --dy are in --xy-unit if given, else in --unit; the file's spacing in its own unit
     given_unit = normalise(args.xy_unit) if args.xy_unit else unit
     if args.dx is not None or args.dy is not None:

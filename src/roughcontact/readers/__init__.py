@@ -23,10 +23,11 @@ from pathlib import Path
 
 import numpy as np
 
+from .. import limits
 from . import lengths
 from .moments_file import load_moments, moments_from_mapping, moments_in_unit
 
-__all__ = ["HeightMap", "read_height_map", "TEXT_SUFFIXES", "LAYOUTS", "load_moments", "moments_from_mapping",
+__all__ = ["HeightMap", "read_height_map", "unit_warning", "UnitWarning", "TEXT_SUFFIXES", "LAYOUTS", "load_moments", "moments_from_mapping",
            "moments_in_unit"]
 
 TEXT_SUFFIXES = (".csv", ".txt", ".dat", ".asc", ".xyz", ".tsv")
@@ -58,6 +59,36 @@ class HeightMap:
                        z_unit=unit)
 
 
+def _read_npy(file: Path) -> np.ndarray:
+    """The 2-d numeric array of a ``.npy`` file, its header checked before the data are read
+    (NumPy's format, ``numpy.lib.format``: magic, version, a header dict of descr, fortran_order,
+    shape): an empty or truncated file, an object array or one of more points than
+    ``ROUGHCONTACT_MAX_CELLS`` is one line, and no memory is allocated for it."""
+    fmt = np.lib.format
+    try:
+        with open(file, "rb") as f:
+            version = fmt.read_magic(f)
+            if version not in ((1, 0), (2, 0)):  # 3.0: utf-8 field names of structured arrays only
+                raise ValueError(f"version {version[0]}.{version[1]} of the format (1.0 and 2.0 are read)")
+            read_header = fmt.read_array_header_1_0 if version == (1, 0) else fmt.read_array_header_2_0
+            shape, fortran_order, dtype = read_header(f)
+            offset = f.tell()
+    except (ValueError, EOFError, OSError) as exc:  # empty (EOFError), not .npy, a bad header
+        raise ValueError(f"{file}: not a .npy array ({' '.join(str(exc).split())[:200]})") from None
+    if len(shape) != 2 or dtype.kind not in "biuf":
+        raise ValueError(f"{file}: expected a 2-d numeric map, got shape {tuple(shape)} ({dtype})")
+    limits.check_count(min(int(np.prod(shape, dtype=object)), 10 ** 18), "cells",
+                       f"{file}: the array's {shape[0]} x {shape[1]} points")
+    size = file.stat().st_size
+    if size < offset + shape[0] * shape[1] * dtype.itemsize:
+        raise ValueError(f"{file}: truncated: the header declares {shape[0]} x {shape[1]} values of "
+                         f"{dtype.itemsize} bytes, the file holds {size - offset} data bytes")
+    try:
+        return np.load(file, allow_pickle=False)
+    except (ValueError, EOFError, OSError) as exc:
+        raise ValueError(f"{file}: not a numeric .npy array ({' '.join(str(exc).split())[:200]})") from None
+
+
 def read_height_map(path, *, layout: str = "auto", channel: int | None = None) -> HeightMap:
     """The height map in ``path`` (module docstring for the formats). ``layout`` for text files:
     "auto" (points when the header names x, y, z or the table is much longer than wide), "grid"
@@ -65,15 +96,11 @@ def read_height_map(path, *, layout: str = "auto", channel: int | None = None) -
     missing, empty or unreadable file."""
     file = Path(path)
     if layout not in LAYOUTS:
-        raise ValueError(f"layout must be one of {', '.join(LAYOUTS)}; got {layout!r}")
-    if not file.is_file():
-        raise ValueError(f"no such file: {path}")
+        raise ValueError(f"layout must be one of {', '.join(LAYOUTS)}; got {limits.describe(layout)}")
+    limits.check_file(file, "height map")  # a regular file (not a FIFO, /dev/zero) within the size limit
     suffix = file.suffix.lower()
     if suffix == ".npy":
-        try:
-            z = np.load(file, allow_pickle=False)
-        except ValueError as exc:
-            raise ValueError(f"{path}: not a numeric .npy array ({exc})") from None
+        z = _read_npy(file)
         found = {"heights": z, "dx": None, "dy": None, "xy_unit": None, "z_unit": None, "source": "npy", "notes": []}
     elif suffix in TEXT_SUFFIXES or layout != "auto":
         from .text import read_text
@@ -92,3 +119,44 @@ def read_height_map(path, *, layout: str = "auto", channel: int | None = None) -
         raise ValueError(f"{path}: expected a 2-d numeric map, got shape {z.shape} ({z.dtype})")
     return HeightMap(heights=z.astype(float), dx=found["dx"], dy=found["dy"], xy_unit=found["xy_unit"],
                      z_unit=found["z_unit"], source=found["source"], notes=tuple(found["notes"]))
+
+
+class UnitWarning(UserWarning):
+    """A map whose numbers are implausible in the units they are read in (:func:`unit_warning`)."""
+
+
+def unit_warning(found: HeightMap, xy_unit: str, z_unit: str, file, *, dx: float | None = None,
+                 options: tuple = ("--xy-unit", "--z-unit")) -> str | None:
+    """A warning, naming ``file``, when the map read in ``xy_unit`` (its spacing ``dx``, default
+    the file's) and ``z_unit`` (its heights) is implausible for a measured surface
+    (:data:`lengths.PLAUSIBLE`: e.g. an XYZ export in metres taken in µm has a sampling interval
+    of 1.25 pm and an rms height of 0.1 pm), saying which unit was probably meant and the options
+    (``options``: of the lateral unit, of the heights) that state it; None if plausible."""
+    dx = found.dx if dx is None else dx
+    z = found.heights[np.isfinite(found.heights)]
+    rms = float(np.std(z)) if z.size > 1 else 0.0
+    checks = [("sampling interval", dx, xy_unit, options[0]), ("rms height", rms, z_unit, options[1])]
+    doubts, fixes = [], []
+    for quantity, value, unit, option in checks:
+        if value is None or not np.isfinite(value) or value == 0:
+            continue
+        meant = lengths.likely_unit(value, unit, quantity)
+        low, high, _ = lengths.PLAUSIBLE[quantity]
+        if low <= abs(value) * lengths.METRES[lengths.normalise(unit)] <= high:
+            continue
+        doubts.append(f"{'an' if quantity[0] == 'r' else 'a'} {quantity} of {value:.3g} {unit} "
+                      f"({lengths.in_metres(abs(value) * lengths.METRES[lengths.normalise(unit)])})")
+        if meant is not None:
+            fixes.append((option, meant))
+    if not doubts:
+        return None
+    ranges = "; ".join(f"{q}s of {lengths.in_metres(lo)} to {lengths.in_metres(hi)}"
+                       for q, (lo, hi, _) in lengths.PLAUSIBLE.items())
+    meant = sorted({u for _, u in fixes})
+    advice = (f": the values look like {' and '.join(_UNIT_WORDS.get(u, u) for u in meant)}: pass "
+              + " ".join(f"{o} {u}" for o, u in fixes)) if fixes else ": check the units of the file"
+    return (f"{file}: implausible for a measured surface: {' and '.join(doubts)} (instruments measure {ranges})"
+            + advice)
+
+
+_UNIT_WORDS = {"m": "metres", "mm": "millimetres", "um": "micrometres", "nm": "nanometres"}
