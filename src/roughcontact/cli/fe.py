@@ -32,6 +32,7 @@ from typing import Any
 
 import numpy as np
 
+from ..limits import describe
 from . import CLIError, _MOMENTS, _real, output_file, writing
 
 __all__ = ["add_commands"]
@@ -46,6 +47,11 @@ TANGENTIAL_FORMS = {"incremental": "incremental-end", "incremental-start": "incr
 #: fe beam warns when its discretisation error estimate exceeds this share of the centre
 #: deflection (the convergence band of config.yaml fe.beam.study.convergence)
 MESH_RTOL = 0.01
+#: the largest finite-element model ``fe beam`` builds, in unknowns: (environment variable,
+#: default). A local stand-in for a limit "fe_dofs" of roughcontact.limits.LIMITS (issue 29:
+#: ``--n-x 100000`` went on to build a model of ~3·10⁷ unknowns); 2·10⁶ unknowns of the beam's
+#: strip take minutes and a few GiB to solve.
+MAX_FE_DOFS = ("ROUGHCONTACT_MAX_FE_DOFS", 2_000_000)
 
 
 def add_commands(sub, parents) -> None:
@@ -110,18 +116,27 @@ def _add_run(sub, parents) -> None:
     p.set_defaults(func=_run_deck, render=_render_deck)
 
 
+#: the exit code of a command interrupted by Ctrl-C: 128 + SIGINT, as a shell reports it
+EXIT_INTERRUPTED = 130
+
+
 def _run_deck(args) -> dict[str, Any]:
     from ..fe.deck_run import run_deck_file
 
     if args.vtu is not None and args.vtu.suffix.lower() != ".pvd":
-        raise CLIError(f"--vtu takes a .pvd file (the series), got {str(args.vtu)!r}")
-    result = _solved(lambda: run_deck_file(args.deck, args.interface, args.elements,
-                                           progress=None if args.quiet else _progress))
-    if args.vtu is not None:
-        from ..fe.pvd import write_series
+        raise CLIError(f"--vtu takes a .pvd file (the series), got {describe(str(args.vtu))}")
+    try:
+        result = _solved(lambda: run_deck_file(args.deck, args.interface, args.elements,
+                                               progress=None if args.quiet else _progress))
+        if args.vtu is not None:
+            from ..fe.pvd import write_series
 
-        with writing(args.vtu, "--vtu", atomic=False) as path:  # the series' own folder OUT/ is created
-            write_series(path, result)
+            # the series goes to a temporary folder, renamed into place when whole (fe.pvd)
+            with writing(args.vtu, "--vtu", atomic=False) as path:
+                write_series(path, result)
+    except KeyboardInterrupt:  # Ctrl-C: one line, no traceback; write_series removed its temporaries
+        written = f"; nothing written to {args.vtu}" if args.vtu is not None else ""
+        raise CLIError(f"interrupted{written}", code=EXIT_INTERRUPTED) from None
     out = result.summary()
     out["vtu"] = str(args.vtu) if args.vtu else None
     return out
@@ -186,10 +201,56 @@ def _add_beam(sub, parents) -> None:
     p.set_defaults(func=_run_beam, render=_render_beam)
 
 
+def _beam_dofs(n_x: int, n_z: int, elements: str) -> int:
+    """An upper bound of the beam model's unknowns (3 per node), from its mesh of n_x × 1 × n_z
+    20-node hexahedra over a base of n_x × 1 × 1 (examples.beam.beam_deck): a 20-node grid of
+    a × b × c elements has at most (2a+1)(2b+1)(2c+1) nodes; each contact-face element adds
+    its transition nodes (cubic: 8 per face, quadratic: 1)."""
+    extra = 8 if elements == "cubic" else 1
+    return 3 * ((2 * n_x + 1) * 3 * (2 * n_z + 1) + (2 * n_x + 1) * 3 * 3 + 2 * extra * n_x)
+
+
+def _check_beam_size(args) -> None:
+    """Refuse a beam model beyond :data:`MAX_FE_DOFS` before it is built (one line naming the
+    options, the limit and how to raise it)."""
+    import os
+
+    var, default = MAX_FE_DOFS
+    text = os.environ.get(var, "").strip()
+    try:
+        limit = float(text) if text else default
+    except ValueError:
+        limit = math.nan
+    if not (math.isfinite(limit) and limit > 0):
+        raise CLIError(f"{var}={describe(text)}: must be a positive number (the unknowns of one finite-element model)")
+    for name in ("n_x", "n_z"):
+        if getattr(args, name) < 1:
+            raise CLIError(f"--{name.replace('_', '-')} must be a positive integer, got {getattr(args, name)}")
+    dofs = _beam_dofs(args.n_x, args.n_z, args.elements)
+    if dofs > limit:
+        raise CLIError(f"--n-x {args.n_x} --n-z {args.n_z}: a model of up to {dofs:.3g} unknowns exceeds the limit "
+                       f"of {int(limit)} (the unknowns of one finite-element model; set {var} to raise it)")
+
+
+def _beam_moments(args) -> dict[str, float]:
+    """The five moments in µm (the beam's unit): --m00 … --m04 as given, or --moments FILE
+    (cli.contact's reader; moments in another stated length unit converted, eq. units
+    m00·f², m40·f⁻²; a file without a unit read in µm like the numbers)."""
+    from ..readers import moments_in_unit
+    from .contact import _surface_from
+
+    surface = _surface_from(args)
+    unit = getattr(args, "moments_unit", None)
+    if unit is not None and unit != "um":
+        surface = moments_in_unit(surface, unit, "um")
+    return {name: float(getattr(surface, name)) for name in _MOMENTS}
+
+
 def _run_beam(args) -> dict[str, Any]:
     from ..examples.beam import BeamRun, BeamSpec, run_beam
 
-    moments = {name: getattr(args, name) for name in _MOMENTS}
+    _check_beam_size(args)
+    moments = _beam_moments(args)
     if (args.psi is not None) != (args.law == "elastoplastic"):
         raise CLIError("--psi is needed with --law elastoplastic and only used there")
     spec = BeamSpec(elements=args.elements, load=args.load, initial_load=args.initial_load,

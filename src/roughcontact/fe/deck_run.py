@@ -17,6 +17,10 @@ law's lay direction projected onto the master face) and e_2 = n × e_1 (n from m
 in the deck's stress unit; slip_1_um, slip_2_um, the plastic slips along e_1, e_2 in µm; status
 stick/slip/open. The model-validity of the law is judged on the solved state: the largest
 pressure of every interaction (:func:`DeckResult.validity_warnings`).
+
+A law file read for a deck is checked against it first (:func:`check_law_file`): its E* against
+the deck's *ELASTIC (eq. (42)), its length unit against the deck's stresses, its lay directions
+against the contact faces; a law for an interaction the deck lacks is a note.
 """
 
 from __future__ import annotations
@@ -27,14 +31,21 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..interface import friction
+from ..limits import describe
 from .deck_model import DeckProblem
-from .laws import LENGTH_UNITS
+from .laws import LENGTH_UNITS, UNIT_RTOL, LawError
 from .solver import ContactModel, ConvergenceError, NewtonOptions, solve
 
-__all__ = ["DeckIncrement", "DeckResult", "DeckConvergenceError", "run_deck", "run_deck_file", "STATUS_NAMES"]
+__all__ = ["DeckIncrement", "DeckResult", "DeckConvergenceError", "run_deck", "run_deck_file", "STATUS_NAMES",
+           "check_law_file", "law_notes", "SOLID_E_STAR_PA"]
 
 #: friction.STICK, SLIP, OPEN by name
 STATUS_NAMES = ("stick", "slip", "open")
+#: E* [Pa] of two solids in contact, from the softest elastomers (E ≈ 1 MPa) to diamond on
+#: diamond (E = 1.05 TPa, ν = 0.1: E* = 0.53 TPa; on a rigid body 1.06 TPa). A deck's E*
+#: outside it, read in N/length_unit² (the law file's units, forces in N), means a wrong
+#: length_unit: one of the factors 10⁶ that separate N/m², N/mm², N/µm², N/nm².
+SOLID_E_STAR_PA = (1e6, 2e12)
 
 
 class DeckConvergenceError(ConvergenceError):
@@ -173,7 +184,7 @@ class DeckResult:
                                              "e_2 = n x e_1; n: the master face's normal, towards the slave"},
             "E_star": dict(self.problem.E_star),
             "steps": steps,
-            "notes": list(self.problem.dm.deck.notes),
+            "notes": [*self.problem.dm.deck.notes, *law_notes(self.problem.dm.deck, self.problem.laws)],
             "units": {"x, y, z, u": f"{self.problem.laws.length_unit} (the deck's length unit)",
                       "u_N_um": "um, closure from the law's reference state (seating pressure), positive closes",
                       "slip_1_um, slip_2_um": "um, plastic slips along e_1, e_2",
@@ -280,10 +291,95 @@ def run_deck(problem: DeckProblem, options: NewtonOptions | None = None, progres
     return DeckResult(problem, tuple(out), problem.dm.family, time.perf_counter() - t0)
 
 
+def _body_E_star(deck, pair):
+    """E* of a contact pair by eq. (42) (asperity.effective_modulus) from the *ELASTIC of its two
+    surfaces' materials, with the lines that give them; None when a surface spans several
+    materials (the law must then give E_star: deck_model says so)."""
+    from ..asperity import effective_modulus
+
+    mats = []
+    for surface in (pair.slave, pair.master):
+        names = {deck.element_material.get(eid) for eid, _ in deck.surfaces.get(surface, ())}
+        if len(names) != 1 or None in names:
+            return None
+        mats.append(deck.materials[names.pop()])
+    (a, b) = mats
+    return effective_modulus(a.E, a.nu, b.E, b.nu), (a, b)
+
+
+def check_law_file(deck, laws) -> None:
+    """A law file checked against the deck it is read for (issue 29); LawError naming the law
+    file, the key and both numbers otherwise:
+
+    * a stated ``E_star`` within 1 % (:data:`~.laws.UNIT_RTOL`) of the deck's own E*, eq. (42)
+      of the *ELASTIC of the pair's two bodies (where each surface lies on one material);
+    * the length unit: the law file's stresses are N/length_unit² (forces in N), so the
+      deck's E* in Pa must be that of solids (:data:`SOLID_E_STAR_PA`) — unless the file
+      states its ``stress_unit``, which laws.law_file_from_dict has checked against the length
+      unit already (the escape for a genuinely softer or stiffer pair).
+
+    A law file of mm with a deck of m (or the reverse) otherwise runs with a length scale wrong
+    by 10³ and gives closures of the wrong size and even sign (issue 29: −6.0 µm for +1.35 µm)."""
+    for pair in deck.contact_pairs:
+        law = laws.interactions.get(pair.interaction)
+        own = _body_E_star(deck, pair)
+        if law is None or own is None:
+            continue  # a missing law, or bodies of several materials: deck_model names them
+        E_deck, (a, b) = own
+        key = f"{laws.where}: interactions.{pair.interaction}"
+        if law.E_star is not None and abs(law.E_star / E_deck - 1.0) > UNIT_RTOL:
+            raise LawError(f"{key}.E_star: {law.E_star:.6g} differs by {100 * abs(law.E_star / E_deck - 1):.3g} % from "
+                           f"the deck's E* = {E_deck:.6g} (eq. (42) of *ELASTIC {a.name} at {a.where} and {b.name} at "
+                           f"{b.where}, the deck's stress unit): omit E_star to use the deck's, or correct the unit")
+        if laws.stress_unit is None:
+            lo, hi = SOLID_E_STAR_PA
+            pa = E_deck * laws.pascal_per_stress_unit
+            if not lo <= pa <= hi:
+                guess = [u for u, k in LENGTH_UNITS.items() if u != "µm" and lo <= E_deck * 10.0 ** (-2 * k) <= hi]
+                hint = f"; with length_unit {guess[0]} it is {E_deck * 10.0 ** (-2 * LENGTH_UNITS[guess[0]]):.3g} Pa" if guess else ""
+                raise LawError(f"{laws.where}: length_unit {laws.length_unit}: the deck's stresses are then "
+                               f"N/{laws.length_unit}^2 (forces in N), and its E* = {E_deck:.6g} (eq. (42) of *ELASTIC at "
+                               f"{a.where} and {b.where}) is {pa:.3g} Pa, outside {lo:g} ... {hi:g} Pa of solids{hint}: "
+                               "give the deck's length unit (or state stress_unit if the bodies really are this soft "
+                               "or stiff)")
+
+
+def _check_lay_directions(dm, laws) -> None:
+    """Every law's lay direction has a component along its contact faces (the law's axis 1 is
+    its projection); LawError naming the law file and the key otherwise. The faces' frames are
+    built by interface_points as deck_model will build them."""
+    from .interface_points import interface_points
+    from .mesh import Mesh
+
+    for k, pair in enumerate(dm.deck.contact_pairs):
+        law = laws.interactions.get(pair.interaction)
+        if law is None:
+            continue
+        one = Mesh(dm.mesh.points, dm.mesh.blocks, {}, {}, (dm.mesh.interfaces[k],), "pair")
+        try:
+            interface_points(one, "lobatto", law.lay_direction)
+        except ValueError as exc:
+            if "lay direction" not in str(exc):
+                raise
+            raise LawError(f"{laws.where}: interactions.{pair.interaction}.lay_direction: "
+                           f"{describe(list(law.lay_direction))} is normal to a face of the contact pair "
+                           f"{pair.slave}, {pair.master} ({pair.where}): give a direction along the faces "
+                           "(the lay, the moments' x axis)") from None
+
+
+def law_notes(deck, laws) -> list[str]:
+    """Notes on a law file read for a deck: a law for an interaction the deck does not define is
+    not used (a note, not an error: one law file may serve several decks)."""
+    return [f"{laws.where}: interactions.{name}: the deck has no *SURFACE INTERACTION, NAME={name}; its law "
+            "is not used" for name in laws.interactions if name not in deck.interactions]
+
+
 def run_deck_file(deck, laws, family: str = "quadratic", options: NewtonOptions | None = None,
                   progress=None) -> DeckResult:
     """Read, mesh, assemble and solve: ``deck`` a path or a :class:`~.deck.Deck`, ``laws`` a
-    path or a :class:`~.laws.LawFile`."""
+    path or a :class:`~.laws.LawFile`. A law file read from a path is checked against the deck
+    (:func:`check_law_file`; a LawFile built by the library's examples, whose E* may be chosen
+    apart from the bodies', e.g. ``fe punch --E-star``, is not); every law's lay direction is."""
     from .deck import Deck, read_deck
     from .deck_mesh import deck_mesh
     from .deck_model import deck_problem
@@ -291,6 +387,10 @@ def run_deck_file(deck, laws, family: str = "quadratic", options: NewtonOptions 
 
     t0 = time.perf_counter()
     deck = deck if isinstance(deck, Deck) else read_deck(deck)
-    laws = laws if isinstance(laws, LawFile) else read_law_file(laws)
-    result = run_deck(deck_problem(deck_mesh(deck, family), laws), options, progress)
+    if not isinstance(laws, LawFile):
+        laws = read_law_file(laws)
+        check_law_file(deck, laws)
+    dm = deck_mesh(deck, family)
+    _check_lay_directions(dm, laws)
+    result = run_deck(deck_problem(dm, laws), options, progress)
     return DeckResult(result.problem, result.increments, result.family, time.perf_counter() - t0)

@@ -37,17 +37,47 @@ import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from .. import limits
 from ..interface import friction
+from ..limits import describe
 from ..statistics import SpectralMoments
 
-__all__ = ["LENGTH_UNITS", "LawError", "NoFriction", "Coulomb", "Stick", "Orthotropic", "InteractionLaw",
+__all__ = ["LENGTH_UNITS", "STRESS_UNITS", "LAW_KEYS", "LawError", "NoFriction", "Coulomb", "Stick", "Orthotropic", "InteractionLaw",
            "LawFile", "read_law_file", "law_file_from_dict", "DEFAULT_PRESSURE_RANGE"]
 
 #: the length units: their power of ten in metres (unit = 10^k m), so that ratios are exact
 LENGTH_UNITS = {"m": 0, "mm": -3, "um": -6, "µm": -6, "nm": -9}
 #: the tabulated range of the normal law without ``pressure_range``, times E*
 DEFAULT_PRESSURE_RANGE = (1e-17, 0.1)
+#: the relative difference beyond which a stated unit or E* contradicts the deck's (issue 29)
+UNIT_RTOL = 0.01
 _MOMENTS = ("m00", "m20", "m02", "m40", "m04")
+#: the optional ``stress_unit``: its size in Pa (N/m²); it must be N per ``length_unit`` squared
+STRESS_UNITS = {"Pa": 1.0, "N/m^2": 1.0, "kPa": 1e3, "MPa": 1e6, "N/mm^2": 1e6, "GPa": 1e9, "N/um^2": 1e12,
+                "N/µm^2": 1e12, "N/nm^2": 1e18}
+
+# The keys the reader accepts, by their place in the file (``NAME`` an interaction's name):
+# read by the functions below and listed, with their units, in docs/own-model.md's key table
+# (tests/fe/test_law_file_audit.py checks that every one is there).
+_TOP = {"required": ("length_unit", "interactions"), "optional": ("stress_unit",)}
+_INTERACTION = {"required": ("moments", "lay_direction", "law", "seating_pressure"),
+                "optional": ("E_star", "psi", "yield_strength", "friction", "pressure_range", "tangential_form")}
+_FRICTION = {"coulomb": {"required": ("mu", "kt_over_kn"), "optional": ()},
+             "stick": {"required": ("kt_over_kn",), "optional": ()},
+             "orthotropic": {"required": ("mu_m", "mu_o", "n_x", "n_y", "kt_over_kn"), "optional": ("nu_x", "nu_y", "k")}}
+
+
+def _law_keys() -> tuple[str, ...]:
+    top = [*_TOP["required"], *_TOP["optional"]]
+    inter = [f"interactions.NAME.{k}" for k in (*_INTERACTION["required"], *_INTERACTION["optional"])]
+    moments = [f"interactions.NAME.moments.{k}" for k in (*_MOMENTS, "unit")]
+    fric = [f"interactions.NAME.friction.{kind}.{k}" for kind, keys in _FRICTION.items()
+            for k in (*keys["required"], *keys["optional"])]
+    return tuple(top + inter + moments + fric)
+
+
+#: every key of a law file, as a dotted path (docs/own-model.md defines each with its unit)
+LAW_KEYS = _law_keys()
 
 
 class LawError(ValueError):
@@ -60,10 +90,10 @@ def _fail(where: str, message: str):
 
 def _number(value, where: str, *, positive=True, allow_zero=False) -> float:
     if isinstance(value, bool) or not isinstance(value, (int, float)):
-        _fail(where, f"must be a number, got {value!r}")
+        _fail(where, f"must be a number, got {describe(value)}")
     x = float(value)
     if not math.isfinite(x) or (positive and not (x > 0 or (allow_zero and x == 0))):
-        _fail(where, f"must be {'non-negative' if allow_zero else 'positive'} and finite, got {value!r}")
+        _fail(where, f"must be {'non-negative' if allow_zero else 'positive'} and finite, got {describe(value)}")
     return x
 
 
@@ -71,7 +101,7 @@ def _pair(value, where: str) -> tuple[float, float]:
     """One value for both axes, or a pair (x, y)."""
     if isinstance(value, (list, tuple)):
         if len(value) != 2:
-            _fail(where, f"give one value or a pair [x, y], got {value!r}")
+            _fail(where, f"give one value or a pair [x, y], got {describe(value)}")
         return _number(value[0], f"{where}[0]"), _number(value[1], f"{where}[1]")
     x = _number(value, where)
     return x, x
@@ -79,13 +109,13 @@ def _pair(value, where: str) -> tuple[float, float]:
 
 def _keys(d, where: str, required=(), optional=()) -> dict:
     if not isinstance(d, dict):
-        _fail(where, f"must be a mapping, got {d!r}")
+        _fail(where, f"must be a mapping, got {describe(d)}")
     for k in required:
         if k not in d:
-            _fail(where, f"missing key {k!r}")
-    extra = sorted(set(d) - set(required) - set(optional))
+            _fail(where, f"missing key {describe(k)}")
+    extra = [k for k in d if k not in required and k not in optional]
     if extra:
-        _fail(where, f"unknown key {extra[0]!r} (expected {', '.join(list(required) + list(optional))})")
+        _fail(where, f"unknown key {describe(extra[0])} (expected {', '.join(list(required) + list(optional))})")
     return d
 
 
@@ -172,17 +202,17 @@ def _friction(value, where: str):
     if value in (None, "none"):
         return NoFriction()
     if not isinstance(value, dict) or len(value) != 1:
-        _fail(where, f"must be none, {{coulomb: ...}}, {{orthotropic: ...}} or {{stick: ...}}, got {value!r}")
+        _fail(where, f"must be none, {{coulomb: ...}}, {{orthotropic: ...}} or {{stick: ...}}, got {describe(value)}")
     (kind, body), = value.items()
     at = f"{where}.{kind}"
     if kind == "coulomb":
-        d = _keys(body, at, ("mu", "kt_over_kn"))
+        d = _keys(body, at, **_FRICTION["coulomb"])
         return Coulomb(_number(d["mu"], f"{at}.mu"), _pair(d["kt_over_kn"], f"{at}.kt_over_kn"))
     if kind == "stick":
-        d = _keys(body, at, ("kt_over_kn",))
+        d = _keys(body, at, **_FRICTION["stick"])
         return Stick(_pair(d["kt_over_kn"], f"{at}.kt_over_kn"))
     if kind == "orthotropic":
-        d = _keys(body, at, ("mu_m", "mu_o", "n_x", "n_y", "kt_over_kn"), ("nu_x", "nu_y", "k"))
+        d = _keys(body, at, **_FRICTION["orthotropic"])
         nu = None
         if "k" in d:
             if "nu_x" in d or "nu_y" in d:
@@ -200,7 +230,7 @@ def _friction(value, where: str):
                            (_number(d["n_x"], f"{at}.n_x", allow_zero=True),
                             _number(d["n_y"], f"{at}.n_y", allow_zero=True)),
                            _pair(d["kt_over_kn"], f"{at}.kt_over_kn"), k, nu)
-    _fail(where, f"unknown friction {kind!r} (none, coulomb, orthotropic, stick)")
+    _fail(where, f"unknown friction {describe(kind)} (none, coulomb, orthotropic, stick)")
 
 
 # ---------------------------------------------------------------------------------------------
@@ -227,9 +257,9 @@ class InteractionLaw:
 
     def __post_init__(self):
         if self.moments_unit not in LENGTH_UNITS:
-            raise LawError(f"moments unit must be one of {', '.join(LENGTH_UNITS)}, got {self.moments_unit!r}")
+            raise LawError(f"moments unit must be one of {', '.join(LENGTH_UNITS)}, got {describe(self.moments_unit)}")
         if self.law not in ("elastic", "elastoplastic"):
-            raise LawError(f"law must be elastic or elastoplastic, got {self.law!r}")
+            raise LawError(f"law must be elastic or elastoplastic, got {describe(self.law)}")
         if self.law == "elastic" and (self.psi is not None or self.yield_strength is not None):
             raise LawError("psi and yield_strength belong to law: elastoplastic")
         if self.law == "elastoplastic" and (self.psi is None) == (self.yield_strength is None):
@@ -306,9 +336,9 @@ def _moments(value, where: str, base: Path | None):
     if isinstance(value, str):  # a `roughcontact moments --json` file
         path = (base / value) if base is not None else Path(value)
         try:
-            data = json.loads(path.read_text())
-        except (OSError, json.JSONDecodeError) as exc:
-            _fail(where, f"cannot read the moments file {path}: {exc}")
+            data = limits.parse_json(limits.read_text(path, "moments file"), f"moments file {path}")
+        except ValueError as exc:  # not a regular file, too large, not UTF-8, not JSON, nested too deep
+            _fail(where, str(exc))
         unit = (data.get("units") or {}).get("dx") if isinstance(data, dict) else None
         value = {**{m: data.get(m) for m in _MOMENTS}, "unit": unit}
         if unit in (None, "L"):
@@ -316,7 +346,7 @@ def _moments(value, where: str, base: Path | None):
     d = _keys(value, where, (*_MOMENTS, "unit"))
     unit = d["unit"]
     if unit not in LENGTH_UNITS:
-        _fail(f"{where}.unit", f"must be one of {', '.join(LENGTH_UNITS)}, got {unit!r}")
+        _fail(f"{where}.unit", f"must be one of {', '.join(LENGTH_UNITS)}, got {describe(unit)}")
     values = {m: _number(d[m], f"{where}.{m}", positive=False) for m in _MOMENTS}
     try:
         return SpectralMoments(**values), unit
@@ -325,12 +355,11 @@ def _moments(value, where: str, base: Path | None):
 
 
 def _interaction(d, where: str, base: Path | None) -> InteractionLaw:
-    d = _keys(d, where, ("moments", "lay_direction", "law", "seating_pressure"),
-              ("E_star", "psi", "yield_strength", "friction", "pressure_range", "tangential_form"))
+    d = _keys(d, where, **_INTERACTION)
     moments, unit = _moments(d["moments"], f"{where}.moments", base)
     lay = d["lay_direction"]
     if not isinstance(lay, (list, tuple)) or len(lay) != 3:
-        _fail(f"{where}.lay_direction", f"must be a vector [x, y, z], got {lay!r}")
+        _fail(f"{where}.lay_direction", f"must be a vector [x, y, z], got {describe(lay)}")
     lay = tuple(_number(v, f"{where}.lay_direction", positive=False) for v in lay)
     if math.hypot(*lay) == 0.0:
         _fail(f"{where}.lay_direction", "must not be zero")
@@ -341,10 +370,10 @@ def _interaction(d, where: str, base: Path | None) -> InteractionLaw:
     if d.get("pressure_range") is not None:
         pr = d["pressure_range"]
         if not isinstance(pr, (list, tuple)) or len(pr) != 2:
-            _fail(f"{where}.pressure_range", f"must be [p_light, p_max], got {pr!r}")
+            _fail(f"{where}.pressure_range", f"must be [p_light, p_max], got {describe(pr)}")
         lo, hi = (_number(v, f"{where}.pressure_range") for v in pr)
         if not lo < hi:
-            _fail(f"{where}.pressure_range", f"needs p_light < p_max, got {pr!r}")
+            _fail(f"{where}.pressure_range", f"needs p_light < p_max, got {describe(pr)}")
         opt["pressure_range"] = (lo, hi)
     if "tangential_form" in d:
         opt["tangential_form"] = d["tangential_form"]
@@ -362,28 +391,49 @@ def _interaction(d, where: str, base: Path | None) -> InteractionLaw:
 # ---------------------------------------------------------------------------------------------
 @dataclass(frozen=True)
 class LawFile:
-    """A law file: the deck's length unit and the law of every interaction (upper-case names)."""
+    """A law file: the deck's length unit, the law of every interaction (upper-case names), the
+    deck's stress unit where the file states it (``stress_unit``, else None: N per
+    ``length_unit`` squared) and where it was read from (``where``, for messages)."""
 
     length_unit: str
     interactions: dict[str, InteractionLaw]
+    stress_unit: str | None = None
+    where: str = field(default="law file", compare=False)
 
     def __post_init__(self):
         if self.length_unit not in LENGTH_UNITS:
-            raise LawError(f"length_unit must be one of {', '.join(LENGTH_UNITS)}, got {self.length_unit!r}")
+            raise LawError(f"length_unit must be one of {', '.join(LENGTH_UNITS)}, got {describe(self.length_unit)}")
+        if self.stress_unit is not None and self.stress_unit not in STRESS_UNITS:
+            raise LawError(f"stress_unit must be one of {', '.join(STRESS_UNITS)}, got {describe(self.stress_unit)}")
+
+    @property
+    def pascal_per_stress_unit(self) -> float:
+        """Pa per deck stress unit: N / length_unit² (forces in N), e.g. 10⁶ for mm."""
+        return 10.0 ** (-2 * LENGTH_UNITS[self.length_unit])
 
     def to_yaml(self) -> str:
         import yaml
 
-        data = {"length_unit": self.length_unit,
+        data = {"length_unit": self.length_unit, **({"stress_unit": self.stress_unit} if self.stress_unit else {}),
                 "interactions": {name: law.to_yaml() for name, law in self.interactions.items()}}
         return yaml.safe_dump(data, sort_keys=False, default_flow_style=None)
 
 
 def law_file_from_dict(data, where: str = "law file", base: Path | None = None) -> LawFile:
     """A :class:`LawFile` from the parsed mapping (module docstring); LawError naming the key."""
-    d = _keys(data, where, ("length_unit", "interactions"))
+    d = _keys(data, where, **_TOP)
     if d["length_unit"] not in LENGTH_UNITS:
-        _fail(f"{where}: length_unit", f"must be one of {', '.join(LENGTH_UNITS)}, got {d['length_unit']!r}")
+        _fail(f"{where}: length_unit", f"must be one of {', '.join(LENGTH_UNITS)}, got {describe(d['length_unit'])}")
+    stress_unit = d.get("stress_unit")
+    if stress_unit is not None:
+        if stress_unit not in STRESS_UNITS:
+            _fail(f"{where}: stress_unit", f"must be one of {', '.join(STRESS_UNITS)}, got {describe(stress_unit)}")
+        # forces in N: the stress unit is N/length_unit²; a stated one that differs contradicts it
+        implied = 10.0 ** (-2 * LENGTH_UNITS[d["length_unit"]])
+        if abs(STRESS_UNITS[stress_unit] / implied - 1.0) > UNIT_RTOL:
+            _fail(f"{where}: stress_unit", f"{stress_unit} = {STRESS_UNITS[stress_unit]:g} Pa contradicts "
+                  f"length_unit {d['length_unit']}, whose stresses (forces in N) are N/{d['length_unit']}^2 = "
+                  f"{implied:g} Pa: correct one of them")
     inter = d["interactions"]
     if not isinstance(inter, dict) or not inter:
         _fail(f"{where}: interactions", "must map at least one interaction name to its law")
@@ -391,20 +441,77 @@ def law_file_from_dict(data, where: str = "law file", base: Path | None = None) 
     for name, body in inter.items():
         key = str(name).upper()
         if key in laws:
-            _fail(f"{where}: interactions", f"{name!r} is given twice (names are case-insensitive)")
+            _fail(f"{where}: interactions", f"{describe(name)} is given twice (names are case-insensitive)")
         laws[key] = _interaction(body, f"{where}: interactions.{name}", base)
-    return LawFile(d["length_unit"], laws)
+    return LawFile(d["length_unit"], laws, stress_unit, where)
+
+
+def _loader(path: Path):
+    """A yaml.SafeLoader class for one law file that refuses what YAML allows but a law file
+    does not need and that would make the reader's memory or depth unbounded: anchors and
+    aliases (a 1 KB "billion laughs" expands to gigabytes), nesting beyond the limit
+    ``nesting`` (limits.LIMITS; the composer recurses, a 50 000-deep file would end in
+    RecursionError), and a key given twice in one mapping (YAML keeps the last silently)."""
+    import yaml
+
+    depth_limit = limits.max_count("nesting")
+
+    class Loader(yaml.SafeLoader):
+        _depth = 0
+
+        def compose_node(self, parent, index):
+            event = self.peek_event()
+            line = event.start_mark.line + 1
+            if isinstance(event, yaml.AliasEvent) or getattr(event, "anchor", None) is not None:
+                kind = "an alias *" if isinstance(event, yaml.AliasEvent) else "an anchor &"
+                raise LawError(f"{path}: line {line}: {kind}{describe(event.anchor)[1:-1]}: YAML anchors and "
+                               "aliases are not read in a law file (write each value out)")
+            self._depth += 1
+            try:
+                if self._depth > depth_limit:
+                    raise limits.InputLimitError(
+                        f"{path}: line {line}: nested deeper than {depth_limit} levels ({limits.LIMITS['nesting'][0]} "
+                        "raises the limit)")
+                return super().compose_node(parent, index)
+            finally:
+                self._depth -= 1
+
+        def construct_mapping(self, node, deep=False):
+            seen = {}
+            for key_node, _ in node.value:
+                try:
+                    key = self.construct_object(key_node, deep=True)
+                    hash(key)
+                except TypeError:
+                    continue  # an unhashable key: SafeConstructor says so itself
+                if key in seen:
+                    raise LawError(f"{path}: key {describe(key)} is given twice in one mapping (lines {seen[key]} "
+                                   f"and {key_node.start_mark.line + 1}): YAML would keep the last silently")
+                seen[key] = key_node.start_mark.line + 1
+            return super().construct_mapping(node, deep)
+
+    return Loader
 
 
 def read_law_file(path) -> LawFile:
-    """Read LAW.yaml (module docstring)."""
+    """Read LAW.yaml (module docstring): a regular UTF-8 file within the input size limit
+    (limits.read_text), without YAML anchors/aliases, repeated keys or nesting beyond the
+    limit ``nesting``; every problem one LawError naming the file (and the line or key)."""
     import yaml
 
     path = Path(path)
     try:
-        data = yaml.safe_load(path.read_text(encoding="utf-8"))
-    except OSError as exc:
-        raise LawError(f"{path}: cannot read: {exc.strerror}") from None
+        text = limits.read_text(path, "law file")
+    except ValueError as exc:  # missing, a FIFO or device, too large, not UTF-8
+        raise LawError(f"cannot read the {exc}") from None
+    loader = _loader(path)(text)
+    try:
+        data = loader.get_single_data()
     except yaml.YAMLError as exc:
         raise LawError(f"{path}: not YAML: {' '.join(str(exc).split())}") from None
+    except RecursionError:  # a recursion the depth check above does not see (the constructor's)
+        raise limits.InputLimitError(f"{path}: nested too deeply ({limits.LIMITS['nesting'][0]} bounds the "
+                                     "nesting)") from None
+    finally:
+        loader.dispose()
     return law_file_from_dict(data, str(path), path.parent)
