@@ -25,12 +25,14 @@ from __future__ import annotations
 
 import contextlib
 import datetime as _dt
+import errno
 import hashlib
 import json
 import logging
 import math
 import os
 import platform
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -45,6 +47,8 @@ __all__ = [
     "config_sha256",
     "provenance_attrs",
     "write_netcdf",
+    "WriteError",
+    "write_error",
     "read_netcdf",
     "read_provenance",
     "REFERENCES",
@@ -211,6 +215,39 @@ def _netcdf_attr(value: Any):
     return str(value)
 
 
+class WriteError(ValueError):
+    """A file the library writes could not be written: one line naming the file and why (the
+    disk being full said as such); nothing is left under the file's name (files.atomic_path).
+    A ValueError, so the command line prints it as one line (exit 2)."""
+
+
+#: a write that fails with less free space than this (or than the data need) failed on a full disk
+_DISK_FULL_BYTES = 1 << 20
+
+
+def write_error(path: str | os.PathLike, exc: BaseException, what: str = "file", needed: int = 0) -> WriteError:
+    """The :class:`WriteError` of a failed write of ``path``: the reason (``exc``'s strerror),
+    and "the disk is full" where the error says so (ENOSPC, EDQUOT) or where it does not but the
+    file system of ``path`` has less than max(1 MiB, ``needed`` bytes) free. The check matters
+    for libraries that hide the errno: netCDF/HDF5 report a full disk as "NetCDF: HDF error".
+    Call it while the partial file still exists (its blocks then count as used)."""
+    path = Path(path)
+    reason = (exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)) or type(exc).__name__
+    full = isinstance(exc, OSError) and exc.errno in (errno.ENOSPC, getattr(errno, "EDQUOT", errno.ENOSPC))
+    free = None
+    try:
+        free = shutil.disk_usage(path.parent if path.parent.exists() else Path.cwd()).free
+    except OSError:
+        pass
+    if not full and free is not None and free < max(_DISK_FULL_BYTES, needed):
+        full = True
+    note = ""
+    if full:
+        note = "; the disk is full" + (f" ({free / 1048576:.3g} MB free on {path.parent})" if free is not None else "")
+        note += ": free space and run again"
+    return WriteError(f"{what} {path}: cannot write it ({' '.join(reason.split())}){note}; nothing written")
+
+
 def write_netcdf(
     ds,
     path: str | os.PathLike,
@@ -226,6 +263,9 @@ def write_netcdf(
     booleans, None) are stored as JSON/text. String variables lose a ``units`` attribute (CF:
     strings have none). A numeric variable without ``units`` or a coordinate without
     ``long_name`` is refused (ValueError naming them): every stored quantity says its unit.
+    A failed write (a full disk, which netCDF reports only as "NetCDF: HDF error") is a
+    :class:`WriteError` naming the file and saying whether the disk is full; the partial file is
+    removed (files.atomic_path), nothing is left under ``path``.
     """
     path = Path(path)
     out = ds.copy()
@@ -242,7 +282,11 @@ def write_netcdf(
     for name in list(out.data_vars) + list(out.coords):
         out[name].attrs = {k: _netcdf_attr(v) for k, v in out[name].attrs.items()}
     with atomic_path(path) as tmp:
-        out.to_netcdf(tmp, engine="netcdf4", format="NETCDF4")
+        try:
+            out.to_netcdf(tmp, engine="netcdf4", format="NETCDF4")
+        except (OSError, RuntimeError) as exc:  # netCDF4 raises RuntimeError for HDF errors
+            # measured here, while the partial file still holds its blocks
+            raise write_error(path, exc, "netCDF file", needed=int(out.nbytes)) from None
     return path
 
 

@@ -1,11 +1,17 @@
 """``roughcontact plot RESULT.json [...] -o fig.png|pdf``: contact results of ``elastic`` /
-``elastoplastic ... --json`` drawn with :func:`roughcontact.plots.contact_curves`, several overlaid."""
+``elastoplastic ... --json`` drawn with :func:`roughcontact.plots.contact_curves`, several overlaid.
+
+Bad input is one line (exit 2): ``--label a b`` (the flag takes one entry and repeats), a label or
+unit matplotlib cannot typeset (checked before drawing), a RESULT that is not a contact result
+(read within the limits of :mod:`roughcontact.limits`), a figure that cannot be written (a full
+disk: naming -o; nothing is left under its name)."""
 
 from __future__ import annotations
 
 from pathlib import Path
 from typing import Any
 
+from .. import limits
 from . import CLIError, output_file
 
 __all__ = ["add_command"]
@@ -30,6 +36,28 @@ def add_command(sub, parents) -> None:
     p.add_argument("--length-unit", dest="length_unit", default=None, metavar="UNIT",
                    help="length unit of the moments (default: the results' length_unit, else L)")
     p.set_defaults(func=_run_plot, render=_render_plot)
+    p.__class__ = _plot_parser(type(p))
+
+
+def _plot_parser(base):
+    """The subparser class of ``plot``: argparse leaves the second word of ``--label a b`` over
+    and the top parser says only "unrecognized arguments: b"; this one says that the flag
+    repeats. (The subparser's class is argparse's choice, type(parent): subclassed here.)"""
+
+    class PlotParser(base):
+        def parse_known_args(self, args=None, namespace=None):
+            ns, extras = super().parse_known_args(args, namespace)
+            words = list(args or [])
+            for i, word in enumerate(words):
+                after = i + 2 if word == "--label" else i + 1 if word.startswith("--label=") else None
+                if extras and after is not None and after < len(words) and words[after] == extras[0]:
+                    label = words[i + 1] if word == "--label" else word.split("=", 1)[1]
+                    self.error(f"--label takes one legend entry; repeat the flag for each result "
+                               f"(--label {label} --label {words[after]}), got {limits.describe(words[after])} "
+                               "left over")
+            return ns, extras
+
+    return PlotParser
 
 
 def _load(path: str) -> dict:
@@ -45,12 +73,21 @@ def _load(path: str) -> dict:
 
 
 def _run_plot(args) -> dict[str, Any]:
+    from ..io import WriteError
     from ..plots import contact_curves, save_figure
+    from ..plots.style import check_text
 
     results = [_load(p) for p in args.results]
     labels = args.labels or [Path(p).stem for p in args.results]
     if len(labels) != len(results):
         raise CLIError(f"{len(labels)} --label for {len(results)} results")
+    try:
+        for option, texts in (("--label", args.labels or []), ("--stress-unit", [args.stress_unit] if args.stress_unit else []),
+                              ("--length-unit", [args.length_unit] if args.length_unit else [])):
+            for text in texts:
+                check_text(text, f"{option} {limits.describe(text)}")
+    except ImportError as exc:
+        raise CLIError(str(exc)) from None
     units = {r.get("length_unit") for r in results} - {None}
     if len(units) > 1 and args.length_unit is None:
         raise CLIError(f"the results are in different length units ({', '.join(sorted(units))}): plot them separately")
@@ -59,7 +96,10 @@ def _run_plot(args) -> dict[str, Any]:
         fig = contact_curves(results, labels=labels, x=args.x, length_unit=length, stress_unit=args.stress_unit)
     except ImportError as exc:
         raise CLIError(str(exc)) from None
-    save_figure(fig, args.output)
+    try:
+        save_figure(fig, args.output)
+    except WriteError as exc:  # a full disk: one line naming the option
+        raise CLIError(f"-o: {exc}") from None
     return {"output": str(args.output), "results": list(args.results), "labels": labels, "x": args.x,
             "length_unit": length, "stress_unit": args.stress_unit}
 

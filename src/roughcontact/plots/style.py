@@ -9,7 +9,11 @@ units in axis labels, legends as a person writes them, and saving (PNG and PDF).
 * Legends read ``ψ = 0.35``, ``m₀₀ = 0.0625 µm²`` (:func:`parameter_label`), and sit outside
   the data (:func:`legend_outside`) where the data fill the axes.
 * :func:`save` writes the PNG and a vector PDF beside it, both without creation dates, so two
-  runs of the same data give the same files.
+  runs of the same data give the same files. A failed write (a full disk: OSError 28) is one
+  line, :class:`roughcontact.io.WriteError` (a ValueError) naming the file; nothing is left
+  under its name.
+* :func:`check_text` refuses a text (a legend entry, a unit) matplotlib cannot typeset
+  (unbalanced or too deeply nested mathtext) with one line naming it, before anything is drawn.
 
 No pyplot: importing this module never changes a user's interactive backend.
 """
@@ -25,10 +29,11 @@ from typing import Iterator
 import numpy as np
 
 from ..files import atomic_path
+from ..io import write_error
 
 __all__ = [
     "STYLE", "COLORS", "style", "new_figure", "save", "save_figure", "color", "ordered_colors", "pretty_unit",
-    "axis_label", "parameter_label", "legend_outside", "note", "require_matplotlib",
+    "axis_label", "parameter_label", "legend_outside", "note", "require_matplotlib", "check_text",
 ]
 
 #: how to get matplotlib (one line for the error message)
@@ -108,12 +113,21 @@ def save(fig, path: str | os.PathLike, *, dpi: int | None = None) -> Path:
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     with style():
-        with atomic_path(path) as tmp:
-            fig.savefig(tmp, format="png", dpi=dpi or STYLE["savefig.dpi"], metadata={"Software": None})
-        with atomic_path(path.with_suffix(".pdf")) as tmp:
-            fig.savefig(tmp, format="pdf",
-                        metadata={"CreationDate": None, "ModDate": None, "Producer": None, "Creator": "roughcontact"})
+        _write(fig, path, "png", dpi or STYLE["savefig.dpi"], {"Software": None})
+        _write(fig, path.with_suffix(".pdf"), "pdf", None,
+               {"CreationDate": None, "ModDate": None, "Producer": None, "Creator": "roughcontact"})
     return path
+
+
+def _write(fig, path: Path, fmt: str, dpi, metadata) -> None:
+    """``fig.savefig`` to ``path`` atomically; an OSError (a full disk) as a one-line WriteError
+    naming the file, raised while the partial file still exists (io.write_error measures the
+    free space then) and removed by atomic_path."""
+    with atomic_path(path) as tmp:
+        try:
+            fig.savefig(tmp, format=fmt, dpi=dpi, metadata=metadata)
+        except OSError as exc:
+            raise write_error(path, exc, "figure") from None
 
 
 def save_figure(fig, path: str | os.PathLike) -> Path:
@@ -126,9 +140,32 @@ def save_figure(fig, path: str | os.PathLike) -> Path:
     metadata = {"png": {"Software": None}, "svg": {"Date": None},
                 "pdf": {"CreationDate": None, "ModDate": None, "Producer": None, "Creator": "roughcontact"}}[fmt]
     with style():
-        with atomic_path(path) as tmp:
-            fig.savefig(tmp, format=fmt, dpi=STYLE["savefig.dpi"], metadata=metadata)
+        _write(fig, path, fmt, STYLE["savefig.dpi"], metadata)
     return path
+
+
+def check_text(text: str, what: str) -> str:
+    """``text`` if matplotlib can typeset it, else ValueError (one line) naming ``what``.
+
+    Text between ``$`` is mathtext; matplotlib parses it only when the figure is drawn, and a
+    malformed one (``$\\frac{a$``) or one nested deeper than its recursive parser reaches
+    (sixty ``\\sqrt{`` raise RecursionError) would fail in the middle of saving. Typesetting
+    it once on a scratch figure finds that before anything is written."""
+    require_matplotlib()
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(1, 1))
+    FigureCanvasAgg(fig)
+    try:
+        fig.text(0, 0, text).get_window_extent(renderer=fig.canvas.get_renderer())
+    except RecursionError:
+        raise ValueError(f"{what}: nested too deeply to typeset (write it as plain text, "
+                         "without $...$)") from None
+    except ValueError as exc:
+        first = " ".join(str(exc).split())[:200]
+        raise ValueError(f"{what}: not valid mathtext ({first}); write it without $...$ or escape $ as \\$") from None
+    return text
 
 
 def texts_outside(fig) -> list[str]:
