@@ -49,7 +49,7 @@ PLAUSIBLE = {"sampling interval": (1e-10, 1e-2, 1e-6), "rms height": (1e-11, 1e-
 def in_metres(value: float) -> str:
     """A length in metres as a short text in the nearest of pm, nm, um, mm, m ("1.25 pm")."""
     for unit in ("m", "mm", "um", "nm", "pm"):
-        if abs(value) >= 0.1 * METRES[unit] or unit == "pm":
+        if abs(value) >= 0.0999 * METRES[unit] or unit == "pm":  # 0.1 nm, not 100 pm (rounding)
             return f"{value / METRES[unit]:.3g} {unit}"
 
 
