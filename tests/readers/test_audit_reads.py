@@ -125,6 +125,9 @@ def test_xyz_header_with_x_in_mm_and_y_in_um(tmp_path):
     assert (m.xy_unit, m.z_unit) == ("um", "nm") and (m.dx, m.dy) == (pytest.approx(0.5), pytest.approx(0.25))
     np.testing.assert_allclose(m.heights, Z)
     assert any("x in mm, y in um: both taken in um" in n for n in m.notes)
+    spaced = tmp_path / "spaced.xyz"  # space-separated, the units after the names
+    spaced.write_text(path.read_text().replace(",", "").replace("x [mm] y [um] z [nm]", "x [mm]  y [um]  z [nm]"))
+    assert (read_height_map(spaced).dx, read_height_map(spaced).dy) == (pytest.approx(0.5), pytest.approx(0.25))
     path.write_text(xyz_text(x.ravel() * 0.0005, y.ravel(), Z.ravel(), "x [mm], y [px], z [nm]"))
     with pytest.raises(ValueError, match="cannot be reconciled: mm and 'px'"):
         read_height_map(path)

@@ -45,6 +45,7 @@ _MISSING = {"", "nan", "na", "n/a", "-", "*", "***", "bad", "nodata", "null"}
 _COMMENT = ("#", "%", "//")
 _UNIT = re.compile(r"^\s*\"?\s*([A-Za-z_][\w ]*?)\s*[\[(]\s*([^\])]+?)\s*[\])]\s*\"?\s*$")
 _GWY = re.compile(r"^\s*(width|height|value units)\s*:\s*([-+0-9.eE]*)\s*(\S*)\s*$", re.IGNORECASE)
+_SPACED_NAME = re.compile(r"[\"']?[^\s\[\]()\"']+(\s*[\[(][^\])]*[\])])?[\"']?")
 # vendor header keys (lower case, runs of spaces/underscores as one space)
 _SPACING_KEY = re.compile(r"^(xy|x|y|lateral)? ?(calibration|pixel size|pixel spacing|spacing|sampling interval|step)$")
 _ZUNIT_KEY = re.compile(r"^(z|height|value|data) ?units?$")
@@ -285,7 +286,10 @@ def _columns(header, delimiter):
     if not header:
         return [], {}, {}
     names, units, unknown = [], {}, {}
-    for i, field in enumerate(_split(header[-1][1], delimiter)):
+    line = header[-1][1]
+    # space-separated: a unit in brackets belongs to the name before it ("x [mm] y [um] z [nm]")
+    fields = _split(line, delimiter) if delimiter else [m.group(0) for m in _SPACED_NAME.finditer(line)]
+    for i, field in enumerate(fields):
         m = _UNIT.match(field)
         name = (m.group(1) if m else field).strip().strip('"')
         names.append(name)
