@@ -10,7 +10,8 @@ in any order), comma, semicolon, tab or space separated, with headers and commen
 * Vendor header lines of key, value[, unit] before the data give the spacing and the units:
   ``"XY calibration","1.25","um/pixel"`` (also ``X calibration``, ``Y calibration``, ``pixel
   size``, ``spacing``; the unit per pixel or per point), ``"Z unit","nm"`` (also ``height unit``,
-  ``value unit``), ``"XY unit","um"`` (also ``lateral unit``).
+  ``value unit``), ``"XY unit","um"`` (also ``lateral unit``); a line of more than three fields
+  names columns.
 * A grid whose first row and first column are coordinates (evenly spaced, monotone, with an empty
   or labelled corner cell) gives dx, dy from them; when they count 0, 1, 2, … (or 1, 2, …) they are
   row and column numbers (a spreadsheet's or pandas' index), dropped without giving a spacing.
@@ -47,7 +48,7 @@ _UNIT = re.compile(r"^\s*\"?\s*([A-Za-z_][\w ]*?)\s*[\[(]\s*([^\])]+?)\s*[\])]\s
 _GWY = re.compile(r"^\s*(width|height|value units)\s*:\s*([-+0-9.eE]*)\s*(\S*)\s*$", re.IGNORECASE)
 _SPACED_NAME = re.compile(r"[\"']?[^\s\[\]()\"']+(\s*[\[(][^\])]*[\])])?[\"']?")
 # vendor header keys (lower case, runs of spaces/underscores as one space)
-_SPACING_KEY = re.compile(r"^(xy|x|y|lateral)? ?(calibration|pixel size|pixel spacing|spacing|sampling interval|step)$")
+_SPACING_KEY = re.compile(r"^(xy|x|y|lateral)? ?(calibration|pixel size|pixel spacing|spacing|sampling interval)$")
 _ZUNIT_KEY = re.compile(r"^(z|height|value|data) ?units?$")
 _XYUNIT_KEY = re.compile(r"^(xy|lateral) ?units?$")
 _PER_PIXEL = re.compile(r"\s*(/|per)\s*(pixels?|px|pix|points?|pt|samples?)\s*$", re.IGNORECASE)
@@ -165,6 +166,8 @@ def _vendor_line(line: str, number: int, path, found: dict) -> bool:
     into ``found`` (dx, dy, xy_unit, z_unit, said). ValueError naming the line for a key it knows
     with a value it cannot read."""
     fields, _, _ = _fields(line)
+    if len(fields) > 3:  # key, value, unit at most: a longer line names columns
+        return False
     key = " ".join(fields[0].replace("_", " ").lower().split()) if fields else ""
     where = f"{path}, line {number}"
     if _ZUNIT_KEY.match(key) or _XYUNIT_KEY.match(key):
