@@ -338,10 +338,9 @@ def check_law_file(deck, laws) -> None:
                 guess = [u for u, k in LENGTH_UNITS.items() if u != "µm" and lo <= E_deck * 10.0 ** (-2 * k) <= hi]
                 hint = f"; with length_unit {guess[0]} it is {E_deck * 10.0 ** (-2 * LENGTH_UNITS[guess[0]]):.3g} Pa" if guess else ""
                 raise LawError(f"{laws.where}: length_unit {laws.length_unit}: the deck's stresses are then "
-                               f"N/{laws.length_unit}^2 (forces in N), and its E* = {E_deck:.6g} (eq. (42) of *ELASTIC at "
-                               f"{a.where} and {b.where}) is {pa:.3g} Pa, outside {lo:g} ... {hi:g} Pa of solids{hint}: "
-                               "give the deck's length unit (or state stress_unit if the bodies really are this soft "
-                               "or stiff)")
+                               f"N/{laws.length_unit}^2 (forces in N), and its E* = {E_deck:.6g} (eq. (42), *ELASTIC at "
+                               f"{a.where}, {b.where}) is {pa:.3g} Pa, outside {lo:g} ... {hi:g} Pa of solids{hint}: "
+                               "give the deck's length unit (or stress_unit, for bodies this soft or stiff)")
 
 
 def _check_lay_directions(dm, laws) -> None:
