@@ -249,7 +249,8 @@ def test_the_grid_the_points_span_is_checked_before_it_is_allocated(tmp_path, mo
     flat[:4] = [0, 999, 999 * 1000, 999 * 1000 + 999]  # the corners: the lattice spans 1000 x 1000
     path = tmp_path / "sparse.xyz"
     path.write_text(xyz_text(flat % 1000 * 0.5, flat // 1000 * 0.5, rng.normal(size=flat.size), "x, y, z"))
-    assert read_height_map(path).heights.shape == (1000, 1000)
+    sparse = read_height_map(path)
+    assert sparse.heights.shape == (1000, 1000) and "2000 points fill 0 % of the 1000 x 1000 lattice" in sparse.notes[-1]
     monkeypatch.setenv("ROUGHCONTACT_MAX_CELLS", "100000")
     with pytest.raises(ValueError, match=r"the points' lattice \(x step 0.5, y step 0.5\) spans 1000 x 1000 grid "
                                          r"points: 1e\+06 exceed the limit of 100000 .*ROUGHCONTACT_MAX_CELLS"):

@@ -393,4 +393,7 @@ def grid_from_points(table, path="points", lines=None) -> tuple[np.ndarray, floa
     notes = []
     if table.shape[1] > 3:
         notes.append(f"{path}: columns 4-{table.shape[1]} ignored (x y z are the first three)")
+    if flat.size < 0.5 * z.size:  # e.g. a stray point not far enough to be refused widened the lattice
+        notes.append(f"{path}: the {flat.size} points fill {100 * flat.size / z.size:.0f} % of the {nx} x {ny} "
+                     "lattice they span; the rest is missing")
     return z, abs(dx), abs(dy), notes
