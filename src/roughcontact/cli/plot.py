@@ -36,28 +36,27 @@ def add_command(sub, parents) -> None:
     p.add_argument("--length-unit", dest="length_unit", default=None, metavar="UNIT",
                    help="length unit of the moments (default: the results' length_unit, else L)")
     p.set_defaults(func=_run_plot, render=_render_plot)
-    p.__class__ = _plot_parser(type(p))
+    _say_label_repeats(p)
 
 
-def _plot_parser(base):
-    """The subparser class of ``plot``: argparse leaves the second word of ``--label a b`` over
-    and the top parser says only "unrecognized arguments: b"; this one says that the flag
-    repeats. (The subparser's class is argparse's choice, type(parent): subclassed here.)"""
+def _say_label_repeats(p) -> None:
+    """argparse leaves the second word of ``--label a b`` over, and the top parser says only
+    "unrecognized arguments: b": wrap this subparser's parse_known_args (which argparse calls on
+    the subparser instance; its class stays the shared one) to say that the flag repeats."""
+    parse = p.parse_known_args
 
-    class PlotParser(base):
-        def parse_known_args(self, args=None, namespace=None):
-            ns, extras = super().parse_known_args(args, namespace)
-            words = list(args or [])
-            for i, word in enumerate(words):
-                after = i + 2 if word == "--label" else i + 1 if word.startswith("--label=") else None
-                if extras and after is not None and after < len(words) and words[after] == extras[0]:
-                    label = words[i + 1] if word == "--label" else word.split("=", 1)[1]
-                    self.error(f"--label takes one legend entry; repeat the flag for each result "
-                               f"(--label {label} --label {words[after]}), got {limits.describe(words[after])} "
-                               "left over")
-            return ns, extras
+    def parse_known_args(args=None, namespace=None):
+        ns, extras = parse(args, namespace)
+        words = list(args or [])
+        for i, word in enumerate(words):
+            after = i + 2 if word == "--label" else i + 1 if word.startswith("--label=") else None
+            if extras and after is not None and after < len(words) and words[after] == extras[0]:
+                label = words[i + 1] if word == "--label" else word.split("=", 1)[1]
+                p.error(f"--label takes one legend entry; repeat the flag for each result "
+                        f"(--label {label} --label {words[after]}), got {limits.describe(words[after])} left over")
+        return ns, extras
 
-    return PlotParser
+    p.parse_known_args = parse_known_args
 
 
 def _load(path: str) -> dict:
