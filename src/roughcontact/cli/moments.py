@@ -14,6 +14,7 @@ from . import CLIError, _MOMENTS, _real, output_file, writing
 __all__ = ["add_command"]
 
 ESTIMATORS = ("fd", "spectral")  # statistics.measure.ESTIMATORS (checked by the tests)
+DETRENDS = ("plane", "mean", "none", "poly2", "poly3", "poly4", "sphere")  # statistics.measure.DETRENDS (tested)
 
 
 def add_command(sub, parents) -> None:
@@ -49,8 +50,10 @@ def add_command(sub, parents) -> None:
     p.add_argument("--order", type=int, choices=(2, 4, 6, 8), default=6, help="accuracy order of the fd stencils (default 6)")
     p.add_argument("--window", choices=("hann", "none"), default="hann",
                    help="spectral estimator's window: hann (default) or none (periodic maps)")
-    p.add_argument("--detrend", choices=("plane", "mean", "none"), default="plane",
-                   help="remove the least-squares plane (default), the mean, or nothing")
+    p.add_argument("--detrend", choices=DETRENDS, default="plane",
+                   help="the form removed before the moments (least squares): the plane (default), the mean, nothing, "
+                   "a polynomial of total degree 2-4 (poly2 ... poly4: curvature form), or a sphere (its radius is "
+                   "reported); what was removed is stated in 'form'")
     p.add_argument("--fill", choices=("none", "harmonic"), default="none",
                    help="missing points: none (the fd stencils avoid them; default) or harmonic (Laplace fill)")
     p.add_argument("--lay-angle", dest="lay_angle", type=_real, default=None, metavar="DEG",
@@ -95,6 +98,7 @@ def _map_in_unit(args):
     else:
         f = factor(xy_unit, unit)
         dx, dy = found.dx * f, (found.dy if found.dy is not None else found.dx) * f
+    _check_spacing(found.heights.shape, dx, dy, "--dx" if args.dx is not None else f"the spacing of {args.file}", unit)
     fz = factor(z_unit, unit) * args.z_scale
     assumed = found.z_unit is None and args.z_unit is None
     source = {"file": str(args.file), "format": found.source, "notes": notes,
@@ -103,12 +107,27 @@ def _map_in_unit(args):
     return found.heights * fz, dx, dy, source
 
 
+def _check_spacing(shape, dx, dy, option, unit) -> None:
+    """CLIError naming ``option`` unless dx, dy [unit] are finite, positive, and the map's extent
+    (n dx) and curvature scale (dx^-4) are finite doubles (--dx 1e308 ended in "SVD did not
+    converge")."""
+    for name, d, n in (("dx", dx, shape[1]), ("dy", dy, shape[0])):
+        shown = option if name == "dx" or option != "--dx" else "--dy"
+        if not (math.isfinite(d) and d > 0):
+            raise CLIError(f"{shown}: the sampling interval must be a finite positive length, got {d:g} {unit}")
+        if not (math.isfinite(n * d) and d > 1e-77):
+            raise CLIError(f"{shown} {d:g} {unit}: with {n} points the map's extent or its curvatures (~1/{name}^4) are "
+                           f"not finite double-precision numbers; give the spacing in a unit near it (--xy-unit, --unit)")
+
+
 def _run_moments(args) -> dict[str, Any]:
     from ..contact.validity import relay_warnings
     from ..readers.lengths import normalise
     from ..statistics.measure import measure_heights, rotate_map
 
     unit = normalise(args.unit)
+    if args.lay_angle is not None and not math.isfinite(args.lay_angle):
+        raise CLIError(f"--lay-angle {args.lay_angle}: the lay angle must be a finite number of degrees")
     z, dx, dy, source = _map_in_unit(args)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
@@ -121,7 +140,10 @@ def _run_moments(args) -> dict[str, Any]:
              "wavenumbers": "angular (rad per unit length), no 2*pi in m_pq",
              "scales": "the moments with the stencils at factor * dx, factor * dy",
              "uncertainty": "standard uncertainty of the surface's moments from this map (batch means over 4x4 "
-                            "sub-windows), same units as the moments"}
+                            "sub-windows), same units as the moments",
+             "form": f"radius, centre_x, centre_y, form_rms in {L}",
+             "noise_floor": f"height_step in {L}; variance, tail_variance in {L}^2; contribution in the units of each "
+                            "moment; fraction: of the measured moment"}
     payload = {
         **{k: r.values[k] for k in _MOMENTS}, "unit": L,
         "lay_angle_deg": r.lay_angle_deg,
@@ -132,6 +154,7 @@ def _run_moments(args) -> dict[str, Any]:
         "anisotropy": r.anisotropy(), "model": r.validity(),
         "estimator": r.estimator, "order": r.order, "window": r.window, "detrend": r.detrend, "fill": r.fill,
         "missing_fraction": r.missing_fraction, "dx": r.dx, "dy": r.dy, "shape": list(z.shape),
+        "form": r.form, "noise_floor": r.noise_floor,
         "source": source, "units": units,
     }
     if args.save_rotated is not None:
@@ -143,6 +166,8 @@ def _run_moments(args) -> dict[str, Any]:
             save_figure(moments_against_scale(_json_safe(payload)), args.plot)
         except ImportError as exc:
             raise CLIError(str(exc)) from None
+        except OSError as exc:  # e.g. a full disk (ENOSPC): atomic_path left nothing under the name
+            raise CLIError(f"--plot {args.plot}: cannot write it ({exc.strerror or exc})") from None
         payload["plot"] = str(args.plot)
     payload["warnings"] = relay_warnings(caught)
     return _json_safe(payload)
@@ -185,8 +210,23 @@ def _render_moments(payload: dict[str, Any]) -> str:
     lines += [f"{k:<24}{v:>16.8g}" for k, v in payload["anisotropy"].items()]
     m = payload["model"]
     lines.append("model of the paper applies: " + ("yes" if m["model_applies"] else "no") + "  ("
-                 + "  ".join(f"{k}={v:.4g}" if isinstance(v, float) else f"{k}={v}" for k, v in m.items() if k != "model_applies")
+                 + "  ".join(f"{k}={v:.4g}" if isinstance(v, float) else f"{k}={v}" for k, v in m.items() if k not in ("model_applies", "m22"))
                  + ")")
+    mm = m.get("m22")
+    if mm and mm.get("summit_ratio") is not None:
+        lines.append(f"m22 (neglected by the model): m22^2/(m40 m04)={mm['rho2']:.3g}, {mm['summit_ratio']:.3g} x the "
+                     "summits of (17); " + ("within" if mm["within_bem_measured"] else "beyond")
+                     + " what the BEM comparison measured (docs/bem.md)")
+    form = payload.get("form") or {}
+    if form:
+        lines.append("form removed: " + form["removed"] + (f", radius {form['radius']:.6g} {u['dx']} ({form['shape']})"
+                                                           if form.get("radius") is not None else "")
+                     + f", rms {form['form_rms']:.4g} {u['dx']}" + (f" ({form['note']})" if form.get("note") else ""))
+    nf = payload.get("noise_floor")
+    if nf:
+        lines.append("noise floor (" + nf["source"] + "): " + "  ".join(
+            f"{k} {100 * f:.3g} %" for k, f in nf["fraction"].items() if f is not None)
+            + (f"  (height step {nf['height_step']:.3g} {u['dx']})" if nf.get("height_step") is not None else ""))
     for s in payload["scales"]:
         lines.append(f"at {s['factor']}x dx ({s['dx']:g} {u['dx']}): " + "  ".join(f"{k}={s[k]:.6g}" for k in _MOMENTS))
     src = payload["source"]

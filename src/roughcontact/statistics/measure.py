@@ -425,17 +425,18 @@ def _spectral(z, dx, dy, window, theta):
 
 #: the noise part of a moment above this fraction of the measured moment is warned about: 10 % of
 #: m40 or m04 is 5 % on the summit density (17) and the mean summit curvature (70), both ∝ √m40, √m04,
-#: more than their batch-means uncertainty on a 256² map (2–4 %, test_noise_floor.py) — a bias the
-#: stated uncertainty does not show; the same 10 % as RESOLUTION_TOL
+#: beyond their batch-means uncertainty on a 256² map (3.4–7 % for the surface of test_noise_floor.py,
+#: 12 maps) — a bias the stated uncertainty does not show; the same 10 % as RESOLUTION_TOL
 NOISE_LIMIT = 0.10
 #: the spectrum's tail: the corner |q_x|, |q_y| in (0.75, 1] of the Nyquist wavenumbers against the
 #: band (0.5, 0.75]; a white floor has equal medians there, a surface's spectrum falls (a power law
 #: C ∝ q^-3.6, Hurst 0.8, by 0.3 between the two; even C ∝ q^-2 by 0.5): a corner within TAIL_FLAT of the
 #: band is read as a floor of white noise
 TAIL_BANDS = ((0.75, 1.0), (0.5, 0.75))
-#: the noise part above this fraction of a moment: its dx-vs-2dx ratio is not judged (NaN). The
-#: estimate is good to ~10 % of the noise part (test_noise_floor.py), which leaves 0.1 f/(1 − f) of the
-#: noise-free moment uncertain at a fraction f: RESOLUTION_TOL (10 %) at f = 0.5
+#: the noise part above this fraction of a moment: its dx-vs-2dx ratio is not judged (NaN). Where the
+#: noise part is large the estimate is within 10 % of it (m40: 0.96–1.09 of the measured inflation,
+#: test_noise_floor.py), which leaves 0.1 f/(1 − f) of the noise-free moment uncertain at a fraction
+#: f: RESOLUTION_TOL (10 %) at f = 0.5
 NOISE_DOMINATES = 0.5
 TAIL_FLAT = 0.7
 _NOISE_MOMENTS = ("m00", "m20", "m02", "m40", "m04", "m22")
@@ -685,9 +686,10 @@ def _warn_about(m: MeasuredMoments, lay_found: bool) -> None:
         worst = sorted(((f, k) for k, f in noise["fraction"].items() if k != "m00" and math.isfinite(f)), reverse=True)
         if worst and worst[0][0] > NOISE_LIMIT:
             parts = ", ".join(f"{100 * f:.3g} % of {k}" for f, k in worst if f > NOISE_LIMIT)
-            how = (f"heights quantised in steps of {noise['height_step']:.3g} (white noise of variance step^2/12)"
+            how = (f"heights quantised in steps of {noise['height_step']:.3g} in their length unit (white noise of variance "
+                   "step^2/12)"
                    if noise["source"].startswith("quantisation") else
-                   f"a white floor in the spectrum's tail (noise variance {noise['variance']:.3g})")
+                   f"a white floor in the spectrum's tail (noise variance {noise['variance']:.3g} in the heights' unit squared)")
             warnings.warn(MeasurementWarning(
                 f"height noise is an estimated {parts} ({how}; more than {100 * NOISE_LIMIT:g} %, "
                 "statistics.measure.NOISE_LIMIT): these moments are inflated by it; 'noise_floor' has each moment's "
