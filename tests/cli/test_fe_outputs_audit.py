@@ -220,3 +220,12 @@ def test_beam_size_is_bounded_before_building(capsys, monkeypatch):
     monkeypatch.setenv("ROUGHCONTACT_MAX_FE_DOFS", "100")
     code, out, err = run(capsys, "fe", "beam", *_numbers(), "--n-x", "6", "--n-z", "2", "--quiet")
     assert code == 2 and "exceeds the limit of 100 " in err
+
+
+@pytest.mark.parametrize("command", [["beam", "--m00", "0.625", "--m20", "8e-5", "--m02", "8e-4", "--m40", "1.04e-6",
+                                      "--m04", "1.04e-4"], ["punch", "--case", "a"]])
+def test_increments_beyond_a_steps_limit_name_the_option(capsys, command):
+    """Not the example's generated deck (/tmp/beam.inp:2006, a file the user never wrote)."""
+    code, out, err = run(capsys, "fe", *command, "--increments", "1000000000", "--quiet")
+    assert (code, out) == (2, "")
+    assert err == "roughcontact: error: --increments 1000000000: must lie in 1 ... 100000 (the increments of a step)\n"

@@ -67,7 +67,7 @@ def _int(text: str) -> int:
     try:
         return int(text)
     except ValueError:
-        raise argparse.ArgumentTypeError(f"must be an integer, got {text!r}") from None
+        raise argparse.ArgumentTypeError(f"must be an integer, got {describe(text)}") from None
 
 
 def _progress(step: int, n_steps: int, k: int, n: int, increment) -> None:
@@ -210,6 +210,15 @@ def _beam_dofs(n_x: int, n_z: int, elements: str) -> int:
     return 3 * ((2 * n_x + 1) * 3 * (2 * n_z + 1) + (2 * n_x + 1) * 3 * 3 + 2 * extra * n_x)
 
 
+def _check_increments(args) -> None:
+    """--increments within what a deck's step may have (fe.deck.MAX_INCREMENTS), said of the
+    option rather than of the example's generated deck."""
+    from ..fe.deck import MAX_INCREMENTS
+
+    if args.increments < 1 or args.increments > MAX_INCREMENTS:
+        raise CLIError(f"--increments {args.increments}: must lie in 1 ... {MAX_INCREMENTS} (the increments of a step)")
+
+
 def _check_beam_size(args) -> None:
     """Refuse a beam model beyond :data:`MAX_FE_DOFS` before it is built (one line naming the
     options, the limit and how to raise it)."""
@@ -249,6 +258,7 @@ def _beam_moments(args) -> dict[str, float]:
 def _run_beam(args) -> dict[str, Any]:
     from ..examples.beam import BeamRun, BeamSpec, run_beam
 
+    _check_increments(args)
     _check_beam_size(args)
     moments = _beam_moments(args)
     if (args.psi is not None) != (args.law == "elastoplastic"):
@@ -352,6 +362,7 @@ def _run_punch(args) -> dict[str, Any]:
 
     if args.law == "elastic" and args.psi is not None:
         raise CLIError("--psi is only used with --law elastoplastic")
+    _check_increments(args)
     psi = (PUNCH_PSI if args.psi is None else args.psi) if args.law == "elastoplastic" else None
     geometry = PunchGeometry(family=args.elements, **({} if args.load_patch is None else {"load_patch": args.load_patch}))
     spec = PunchSpec(geometry=geometry, load=args.load, load_on=args.load_on, seating_pressure=args.seating_pressure,
