@@ -268,3 +268,16 @@ def test_a_latin1_header_and_line_ends(tmp_path):
     m = read_height_map(path)
     assert (m.xy_unit, m.z_unit, m.dx) == ("um", "nm", pytest.approx(0.5)) and m.heights.shape == (12, 16)
     assert any("read as Latin-1" in n for n in m.notes)
+
+
+def test_coordinates_and_a_header_spacing_must_agree(tmp_path):
+    grid = coordinate_grid(Z, 0.5 * np.arange(16), 0.5 * np.arange(12))
+    path = tmp_path / "both.csv"
+    path.write_text('"XY calibration","0.5","um/pixel"\n' + grid)
+    m = read_height_map(path)
+    assert (m.dx, m.dy, m.xy_unit) == (0.5, 0.5, "um")
+    np.testing.assert_allclose(m.heights, Z)
+    path.write_text('"XY calibration","1.25","um/pixel"\n' + grid)
+    with pytest.raises(ValueError, match=r"coordinates in the first row and column \(step 0.5, 0.5\) contradict "
+                                         r"the header's spacing \(1.25, 1.25\)"):
+        read_height_map(path)

@@ -140,6 +140,7 @@ def read_text(path, *, layout: str = "auto") -> dict:
                 "notes": notes + unit_notes + lattice_notes}
     notes += [f"{path}: column {i + 1}: unit {limits.describe(u)} is not a length unit; not used"
               for i, u in unknown.items()]
+    table, coords, coord_note = _coordinate_axes(table, header, path)  # first: they are not heights
     dx = dy = None
     xy_unit = meta.get("width", (None, None))[1]
     if "width" in meta and "height" in meta:
@@ -147,7 +148,6 @@ def read_text(path, *, layout: str = "auto") -> dict:
     if "dx" in vendor:
         dx, dy, xy_unit = vendor["dx"], vendor.get("dy", vendor["dx"]), vendor["xy_unit"]
         notes.append(f"{path}: spacing from the header: {vendor['said']}")
-    table, coords, coord_note = _coordinate_axes(table, header, path)
     if coord_note:
         notes.append(coord_note)
     if coords is not None:
@@ -342,6 +342,8 @@ def _far_off(table, lines, path):
     median than 8 median absolute deviations (a full lattice reaches 2, its edge). One stray point
     made the lattice's clustering merge all the others (\"points repeat\") or implied a grid of
     tens of GiB."""
+    if not np.all(np.isfinite(table[:, :2])):
+        return  # missing coordinates: _lattice says so
     far = np.zeros(table.shape[0], dtype=bool)
     bounds = []
     for column in (0, 1):
@@ -371,9 +373,6 @@ def grid_from_points(table, path="points", lines=None) -> tuple[np.ndarray, floa
     table = np.asarray(table, dtype=float)
     if table.ndim != 2 or table.shape[1] < 3:
         raise ValueError(f"{path}: x y z points need at least 3 columns")
-    for column, name in ((0, "x"), (1, "y")):
-        if not np.all(np.isfinite(table[:, column])):
-            raise ValueError(f"{path}: the {name} column has missing values")
     _far_off(table, lines, path)
     try:
         _, dx, j = _lattice(table[:, 0], "x", path)
