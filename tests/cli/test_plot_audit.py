@@ -115,3 +115,29 @@ def test_a_result_that_is_a_fifo_or_nan_is_one_line(cli_run, results, tmp_path):
     nan.write_text(json.dumps(RESULT).replace("2000.0", "NaN"))
     code, _, err = cli_run("plot", nan, "-o", tmp_path / "f.png")
     assert code == 2 and "NaN is not JSON" in err, err
+
+
+def test_units_valid_alone_but_not_together_are_one_line(cli_run, results, tmp_path):
+    """'$\\frac{N' and 'um$' are plain text each, '$\\frac{N/um$' in the stiffness axis is not."""
+    out = tmp_path / "f.png"
+    code, _, err = cli_run("plot", results[0], "-o", out, "--stress-unit", r"$\frac{N", "--length-unit", "um$")
+    assert code == 2 and len(err.splitlines()) == 1 and "cannot be typeset" in err, err
+    assert not out.exists()
+
+
+def test_a_file_name_that_is_bad_mathtext_asks_for_label(cli_run, tmp_path):
+    path = tmp_path / "$\\frac{a$.json"
+    path.write_text(json.dumps(RESULT))
+    code, _, err = cli_run("plot", path, "-o", tmp_path / "f.png")
+    assert code == 2 and "give --label" in err and len(err.splitlines()) == 1, err
+    code, _, err = cli_run("plot", path, "-o", tmp_path / "f.png", "--label", "plain")
+    assert code == 0, err
+
+
+@pytest.mark.parametrize("key, value", [("s", [1.0, True, 3.0]), ("pressure", ["1", "2", "3"]), ("stiffness", [1.0]),
+                                        ("area_fraction", True), ("length_unit", ["um"])])
+def test_a_result_with_non_numbers_names_the_file_and_key(cli_run, tmp_path, key, value):
+    path = tmp_path / "r.json"
+    path.write_text(json.dumps({**RESULT, key: value}))
+    code, _, err = cli_run("plot", path, "-o", tmp_path / "f.png")
+    assert code == 2 and len(err.splitlines()) == 1 and f"{path}: {key} must be" in err, err

@@ -60,6 +60,9 @@ def _say_label_repeats(p) -> None:
 
 
 def _load(path: str) -> dict:
+    """A contact result read within the input limits (readers.moments_file.read_json): the lists
+    plot draws must be numbers (not ``true``, not strings), all as long as ``s``; CLIError
+    naming the file and the key otherwise."""
     from ..readers.moments_file import read_json
 
     data = read_json(path)
@@ -68,6 +71,16 @@ def _load(path: str) -> dict:
     if missing:
         raise CLIError(f"{path}: not a contact result (no {', '.join(missing)}): write it with "
                        "roughcontact elastic/elastoplastic --json")
+    n = len(data["s"]) if isinstance(data["s"], list) else None
+    for key in (*needed, *(k for k in ("k_Tx", "k_Ty") if k in data)):
+        column = data[key]
+        if not (isinstance(column, list) and column and len(column) == n
+                and all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in column)):
+            raise CLIError(f"{path}: {key} must be a non-empty list of numbers as long as s, got "
+                           f"{limits.describe(column)}")
+    unit = data.get("length_unit")
+    if unit is not None and not isinstance(unit, str):
+        raise CLIError(f"{path}: length_unit must be a unit name or null, got {limits.describe(unit)}")
     return data
 
 
@@ -80,21 +93,31 @@ def _run_plot(args) -> dict[str, Any]:
     labels = args.labels or [Path(p).stem for p in args.results]
     if len(labels) != len(results):
         raise CLIError(f"{len(labels)} --label for {len(results)} results")
-    try:
-        for option, texts in (("--label", args.labels or []), ("--stress-unit", [args.stress_unit] if args.stress_unit else []),
-                              ("--length-unit", [args.length_unit] if args.length_unit else [])):
-            for text in texts:
-                check_text(text, f"{option} {limits.describe(text)}")
-    except ImportError as exc:
-        raise CLIError(str(exc)) from None
     units = {r.get("length_unit") for r in results} - {None}
     if len(units) > 1 and args.length_unit is None:
         raise CLIError(f"the results are in different length units ({', '.join(sorted(units))}): plot them separately")
     length = args.length_unit or (units.pop() if units else None)
+    # every text drawn, typeset once before drawing (check_text): a label that is mathtext matplotlib
+    # cannot parse would otherwise fail (or recurse without end) while the figure is saved
+    texts = [(label, f"--label {limits.describe(label)}" if args.labels else
+              f"the legend entry {limits.describe(label)} (the name of {path}; give --label)")
+             for label, path in zip(labels, args.results)]
+    texts += [(args.stress_unit, f"--stress-unit {limits.describe(args.stress_unit)}")] if args.stress_unit else []
+    texts += [(length, f"--length-unit {limits.describe(length)}" if args.length_unit else
+               f"the results' length_unit {limits.describe(length)}")] if length else []
     try:
+        for text, what in texts:
+            check_text(text, what)
         fig = contact_curves(results, labels=labels, x=args.x, length_unit=length, stress_unit=args.stress_unit)
     except ImportError as exc:
         raise CLIError(str(exc)) from None
+    try:  # the axis labels combine the units (N/mm^2/um): draw once, before anything is written
+        fig.canvas.draw()
+    except RecursionError:
+        raise CLIError("the figure's labels are nested too deeply to typeset: check --stress-unit, --length-unit") from None
+    except ValueError as exc:
+        raise CLIError(f"the figure's labels cannot be typeset ({' '.join(str(exc).split())[:200]}): check the $...$ "
+                       "of --stress-unit and --length-unit") from None
     try:
         save_figure(fig, args.output)
     except WriteError as exc:  # a full disk: one line naming the option
