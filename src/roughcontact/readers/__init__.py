@@ -27,8 +27,8 @@ from .. import limits
 from . import lengths
 from .moments_file import load_moments, moments_from_mapping, moments_in_unit
 
-__all__ = ["HeightMap", "read_height_map", "unit_warning", "UnitWarning", "TEXT_SUFFIXES", "LAYOUTS", "load_moments", "moments_from_mapping",
-           "moments_in_unit"]
+__all__ = ["HeightMap", "read_height_map", "unit_warning", "UnitWarning", "TEXT_SUFFIXES", "LAYOUTS", "load_moments",
+           "moments_from_mapping", "moments_in_unit"]
 
 TEXT_SUFFIXES = (".csv", ".txt", ".dat", ".asc", ".xyz", ".tsv")
 LAYOUTS = ("auto", "grid", "xyz")
@@ -71,12 +71,12 @@ def _read_npy(file: Path) -> np.ndarray:
             if version not in ((1, 0), (2, 0)):  # 3.0: utf-8 field names of structured arrays only
                 raise ValueError(f"version {version[0]}.{version[1]} of the format (1.0 and 2.0 are read)")
             read_header = fmt.read_array_header_1_0 if version == (1, 0) else fmt.read_array_header_2_0
-            shape, fortran_order, dtype = read_header(f)
+            shape, _fortran_order, dtype = read_header(f)
             offset = f.tell()
     except (ValueError, EOFError, OSError) as exc:  # empty (EOFError), not .npy, a bad header
         raise ValueError(f"{file}: not a .npy array ({' '.join(str(exc).split())[:200]})") from None
-    if len(shape) != 2 or dtype.kind not in "biuf":
-        raise ValueError(f"{file}: expected a 2-d numeric map, got shape {tuple(shape)} ({dtype})")
+    if len(shape) != 2 or dtype.kind not in "biuf":  # not complex, object, strings, records
+        raise ValueError(f"{file}: expected a 2-d numeric map of real numbers, got shape {tuple(shape)} ({dtype})")
     limits.check_count(min(int(np.prod(shape, dtype=object)), 10 ** 18), "cells",
                        f"{file}: the array's {shape[0]} x {shape[1]} points")
     size = file.stat().st_size
@@ -134,18 +134,18 @@ def unit_warning(found: HeightMap, xy_unit: str, z_unit: str, file, *, dx: float
     (``options``: of the lateral unit, of the heights) that state it; None if plausible."""
     dx = found.dx if dx is None else dx
     z = found.heights[np.isfinite(found.heights)]
-    rms = float(np.std(z)) if z.size > 1 else 0.0
-    checks = [("sampling interval", dx, xy_unit, options[0]), ("rms height", rms, z_unit, options[1])]
+    rms = float(np.std(z)) if z.size > 1 else 0.0  # about the mean: form included, an order of magnitude is enough
     doubts, fixes = [], []
-    for quantity, value, unit, option in checks:
+    for quantity, value, unit, option in (("sampling interval", dx, xy_unit, options[0]),
+                                          ("rms height", rms, z_unit, options[1])):
         if value is None or not np.isfinite(value) or value == 0:
             continue
-        meant = lengths.likely_unit(value, unit, quantity)
         low, high, _ = lengths.PLAUSIBLE[quantity]
-        if low <= abs(value) * lengths.METRES[lengths.normalise(unit)] <= high:
+        metres = abs(value) * lengths.METRES[lengths.normalise(unit)]
+        if low <= metres <= high:
             continue
-        doubts.append(f"{'an' if quantity[0] == 'r' else 'a'} {quantity} of {value:.3g} {unit} "
-                      f"({lengths.in_metres(abs(value) * lengths.METRES[lengths.normalise(unit)])})")
+        doubts.append(f"{'an' if quantity[0] == 'r' else 'a'} {quantity} of {value:.3g} {unit} ({lengths.in_metres(metres)})")
+        meant = lengths.likely_unit(value, unit, quantity)
         if meant is not None:
             fixes.append((option, meant))
     if not doubts:

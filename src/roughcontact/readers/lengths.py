@@ -29,7 +29,7 @@ def normalise(unit) -> str:
     text = str(unit).strip()
     key = _ALIASES.get(text.lower(), text.lower()) if text not in METRES else text
     if key not in METRES:
-        raise ValueError(f"unknown length unit {limits.describe(unit if isinstance(unit, str) else str(unit))}: use one of {', '.join(METRES)}")
+        raise ValueError(f"unknown length unit {limits.describe(unit)}: use one of {', '.join(METRES)}")
     return key
 
 
