@@ -26,7 +26,14 @@ or a pair (x, y); ``k`` (the potential's shape exponent, ν_y/ν_x = (μ_y/μ_x)
 ν_x = ν_y (k = 0: a circular potential); ``friction: {stick: {kt_over_kn: a}}`` (tangential
 springs without slip); ``tangential_form`` (interface.friction.TANGENTIAL_FORMS);
 ``pressure_range: [p_light, p_max]`` (the tabulated normal law's range; default
-[1e-17, 0.1] × E*).
+[1e-17, 0.1] × E*); ``stress_unit`` (the deck's stress unit, which must be N/``length_unit``²:
+stating it lifts the deck run's plausibility range of E*, deck_run.check_law_file). Every key
+with its unit: :data:`LAW_KEYS` and docs/own-model.md's table.
+
+The file is read through :mod:`roughcontact.limits` (a regular UTF-8 file within the size
+limit) as plain YAML: anchors and aliases, a key given twice in a mapping and nesting beyond
+the limit ``nesting`` are refused with the line(s); values are quoted in messages through
+limits.describe.
 """
 
 from __future__ import annotations
