@@ -62,9 +62,18 @@ def test_free_space_below_the_data_size_counts_as_full(tmp_path, monkeypatch):
 def test_enospc_is_a_full_disk_whatever_the_free_space(tmp_path, monkeypatch):
     _fail_writing(monkeypatch, OSError(errno.ENOSPC, os.strerror(errno.ENOSPC)))
     _free(monkeypatch, 10 ** 12)
-    with pytest.raises(io.WriteError, match=r"cannot write it \(No space left on device\); the disk is full"):
+    with pytest.raises(io.WriteError, match=r"cannot write it \(No space left on device\); the disk is full: free") as info:
         io.write_netcdf(_dataset(), tmp_path / "x.nc", timestamp=False)
+    assert "MB free" not in str(info.value)  # the free space is stated only where it is low
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_quota_is_named_as_such(tmp_path, monkeypatch):
+    _fail_writing(monkeypatch, OSError(errno.EDQUOT, os.strerror(errno.EDQUOT)))
+    _free(monkeypatch, 10 ** 12)
+    with pytest.raises(io.WriteError, match="your disk quota is exceeded") as info:
+        io.write_netcdf(_dataset(), tmp_path / "x.nc", timestamp=False)
+    assert "MB free" not in str(info.value)
 
 
 def test_another_failure_is_not_called_a_full_disk(tmp_path, monkeypatch):

@@ -227,24 +227,27 @@ _DISK_FULL_BYTES = 1 << 20
 
 def write_error(path: str | os.PathLike, exc: BaseException, what: str = "file", needed: int = 0) -> WriteError:
     """The :class:`WriteError` of a failed write of ``path``: the reason (``exc``'s strerror),
-    and "the disk is full" where the error says so (ENOSPC, EDQUOT) or where it does not but the
-    file system of ``path`` has less than max(1 MiB, ``needed`` bytes) free. The check matters
+    and "the disk is full" where the error says so (ENOSPC; EDQUOT: "your disk quota is exceeded")
+    or where it does not but the file system of ``path`` has less than max(1 MiB, ``needed``
+    bytes) free (then the free space is stated). The check matters
     for libraries that hide the errno: netCDF/HDF5 report a full disk as "NetCDF: HDF error".
     Call it while the partial file still exists (its blocks then count as used)."""
     path = Path(path)
     reason = (exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)) or type(exc).__name__
-    full = isinstance(exc, OSError) and exc.errno in (errno.ENOSPC, getattr(errno, "EDQUOT", errno.ENOSPC))
+    code = exc.errno if isinstance(exc, OSError) else None
     free = None
     try:
         free = shutil.disk_usage(path.parent if path.parent.exists() else Path.cwd()).free
     except OSError:
         pass
-    if not full and free is not None and free < max(_DISK_FULL_BYTES, needed):
-        full = True
-    note = ""
-    if full:
-        note = "; the disk is full" + (f" ({free / 1048576:.3g} MB free on {path.parent})" if free is not None else "")
-        note += ": free space and run again"
+    low = free is not None and free < max(_DISK_FULL_BYTES, needed)
+    if code == getattr(errno, "EDQUOT", None):
+        note = "; your disk quota is exceeded: free space and run again"
+    elif code == errno.ENOSPC or low:
+        shown = f" ({free / 1048576:.3g} MB free on {path.parent})" if low else ""
+        note = f"; the disk is full{shown}: free space and run again"
+    else:
+        note = ""
     return WriteError(f"{what} {path}: cannot write it ({' '.join(reason.split())}){note}; nothing written")
 
 
