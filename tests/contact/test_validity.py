@@ -1,6 +1,7 @@
 """roughcontact.contact.validity: the model's range of validity, warned about and enforced
 (issue #12: `elastic --s -5` gave A/A0 = 1.43, a NormalLawTable up to 1e5 N/mm² A/A0 = 10)."""
 
+import math
 import warnings
 
 import numpy as np
@@ -110,3 +111,35 @@ def test_accuracy_warning_below_the_tested_bandwidth():
     assert w == []
     assert validity.MU_ACCURATE == pytest.approx(1 - 2 / 2.02)
     assert dict(validity.MU_DEGRADATION)[1e-4] == 2.8e-7
+
+
+# -- the m22 term against what the BEM comparison measured (issue 29) ----------------------------
+def test_m22_effect_isotropic_summits_are_nayaks():
+    """rho^2 = 1/9 (an elliptically stretched isotropic surface, the BEM's): the Gaussian surface
+    has 2 pi/(3 sqrt 3) = 1.2092 times the summits of (17) (Nayak 1971: D = m4/(6 pi sqrt3 m2)
+    against (17)'s m4/(4 pi^2 m2)) — inside the 1.18-1.24 the BEM maps had; no message."""
+    from roughcontact.contact.validity import BEM_M22, m22_effect
+    from roughcontact.statistics import SpectralMoments
+
+    m = SpectralMoments(0.0625, 8e-5, 8e-4, 1.04e-6, 1.04e-4)
+    e = m22_effect(m, math.sqrt(m.m40 * m.m04) / 3.0)
+    assert e["rho2"] == pytest.approx(1 / 9) and e["summit_ratio"] == pytest.approx(2 * math.pi / (3 * math.sqrt(3)), rel=1e-9)
+    assert e["within_bem_measured"] is True and e["message"] is None
+    assert BEM_M22["summit_ratio"][0] <= e["summit_ratio"] <= BEM_M22["summit_ratio"][1]
+    assert m22_effect(m, 0.0)["summit_ratio"] == pytest.approx(1.0, rel=1e-9)
+
+
+def test_m22_effect_of_a_ground_surface_states_the_bem_numbers():
+    """rho^2 = 1/3 (a Gaussian spread of the lay angle): beyond the BEM's range, a message with the
+    summit ratio, the BEM's measured area errors and the extrapolation 1 - 1/ratio; an uncertainty
+    that reaches the BEM's rho^2 keeps it within."""
+    from roughcontact.contact.validity import m22_effect
+    from roughcontact.statistics import SpectralMoments
+
+    m = SpectralMoments(0.01, 0.001, 0.01, 3e-4, 0.03)
+    m22 = math.sqrt(m.m40 * m.m04 / 3.0)
+    e = m22_effect(m, m22)
+    assert e["within_bem_measured"] is False and 1.44 < e["summit_ratio"] < 1.47
+    assert e["area_deficit_extrapolated"] == pytest.approx(1 - 1 / e["summit_ratio"])
+    assert "8.9-20.3 %" in e["message"] and "docs/bem.md" in e["message"] and "1.18-1.24" in e["message"]
+    assert m22_effect(m, m22, m22_uncertainty=0.25 * m22)["within_bem_measured"] is True
