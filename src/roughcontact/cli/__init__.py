@@ -17,6 +17,7 @@ A thin layer: parse and validate the arguments, call the library, print the resu
                          [--estimator fd|spectral] [--order 6] [--fill none|harmonic]
                          [--layout auto|grid|xyz] [--channel N] [--plot FILE.png] [--json]
     roughcontact plot RESULT.json [RESULT.json ...] -o FILE.png|pdf [--x separation|pressure]
+                         [--label TEXT [--label TEXT ...]] [--stress-unit U] [--length-unit U]
     roughcontact export --format abaqus|calculix|csv --m00 M ... --m04 M --E-star E
                          [--law elastic|elastoplastic --psi P] --pressure-range PMIN PMAX
                          [--rtol 1e-3] [--seating-pressure P0] [--moments-unit um] [--length-unit NAME]
