@@ -281,3 +281,16 @@ def test_coordinates_and_a_header_spacing_must_agree(tmp_path):
     with pytest.raises(ValueError, match=r"coordinates in the first row and column \(step 0.5, 0.5\) contradict "
                                          r"the header's spacing \(1.25, 1.25\)"):
         read_height_map(path)
+
+
+def test_instrument_errors_are_printable_and_an_empty_map_is_named(tmp_path):
+    """SurfaceTopography quoted a corrupt .plu's bytes (control characters) in its message; an
+    empty file of an extension no reader claims was read as a 0 x 0 map."""
+    pytest.importorskip("SurfaceTopography")
+    (tmp_path / "scan.plu").write_bytes(b"PK\x03\x04D\x8c\x9a\xad" + bytes(range(256)) * 2)
+    with pytest.raises(ValueError, match=r"not a readable \.plu file") as info:
+        read_height_map(tmp_path / "scan.plu")
+    assert str(info.value).isprintable()
+    (tmp_path / "scan.bin").write_bytes(b"")
+    with pytest.raises(ValueError, match=r"scan.bin: the map has no points"):
+        read_height_map(tmp_path / "scan.bin")

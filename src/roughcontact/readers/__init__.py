@@ -117,6 +117,8 @@ def read_height_map(path, *, layout: str = "auto", channel: int | None = None) -
     z = np.asarray(found["heights"])
     if z.ndim != 2 or not np.issubdtype(z.dtype, np.number):
         raise ValueError(f"{path}: expected a 2-d numeric map, got shape {z.shape} ({z.dtype})")
+    if z.size == 0:
+        raise ValueError(f"{path}: the map has no points (shape {z.shape})")
     return HeightMap(heights=z.astype(float), dx=found["dx"], dy=found["dy"], xy_unit=found["xy_unit"],
                      z_unit=found["z_unit"], source=found["source"], notes=tuple(found["notes"]))
 

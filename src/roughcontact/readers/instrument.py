@@ -26,9 +26,11 @@ INSTALL = "pip install '.[measure]' in the roughcontact checkout (or pip install
 
 
 def _brief(exc: Exception) -> str:
-    """SurfaceTopography's message on one line, at most 200 characters."""
+    """SurfaceTopography's message on one line, at most 200 characters (and printable)."""
     text = f"{type(exc).__name__}: {' '.join(str(exc).split())}"
-    return text if len(text) <= 200 else text[:200] + "…"
+    # a corrupt file's bytes may be quoted in the message: unprintable ones as escapes
+    text = "".join(c if c.isprintable() else c.encode("unicode_escape").decode("ascii") for c in text[:200])
+    return text if len(str(exc)) + len(type(exc).__name__) + 2 <= 200 else text + "…"
 
 
 def formats_of_extension(suffix: str) -> list[str]:
