@@ -294,3 +294,12 @@ def test_instrument_errors_are_printable_and_an_empty_map_is_named(tmp_path):
     (tmp_path / "scan.bin").write_bytes(b"")
     with pytest.raises(ValueError, match=r"scan.bin: the map has no points"):
         read_height_map(tmp_path / "scan.bin")
+
+
+def test_an_instrument_channel_is_checked_against_the_cell_limit_before_it_is_read(tmp_path, monkeypatch):
+    st = pytest.importorskip("SurfaceTopography")
+    st.Topography(Z.T.copy(), physical_sizes=(8.0, 3.0), unit="um").to_x3p(str(tmp_path / "a.x3p"))
+    assert read_height_map(tmp_path / "a.x3p").heights.shape == (12, 16)
+    monkeypatch.setenv("ROUGHCONTACT_MAX_CELLS", "100")
+    with pytest.raises(ValueError, match=r"a.x3p: channel 0 declares 16 x 12 points: 192 exceed the limit of 100"):
+        read_height_map(tmp_path / "a.x3p")
