@@ -86,8 +86,8 @@ def test_kt_note_only_with_friction_naming_its_pressure(cli_run, tmp_path, fmt):
     code, out, err = cli_run(*base, "--mu", "0.1", "--kt-over-kn", "0.8", "--kt-at", "0.5")
     assert code == 0, err
     kt = [line for line in out.splitlines() if line.startswith("not expressed: k_T(p)")]
-    assert len(kt) == 1 and "p = 0.5 (--kt-at)" in kt[0] and "p0" not in kt[0], kt
+    assert len(kt) == 1 and "p = 0.5, from --kt-at" in kt[0] and "p0" not in kt[0], kt
     code, out, err = cli_run(*base, "--mu", "0.1", "--kt-over-kn", "0.8", "--json")
     d = json.loads(out)
     p = d["friction"]["kt_at"]
-    assert any(f"p = {p:.6g} (the default" in n for n in d["cannot_express"]), d["cannot_express"]
+    assert any(f"p = {p:.6g}, the default" in n for n in d["cannot_express"]), d["cannot_express"]

@@ -26,8 +26,8 @@ CANNOT_EXPRESS = {
 }
 #: the k_T(p) entry of CANNOT_EXPRESS, with the pressure P of k_T(P) (--kt-at or its default)
 KT_CANNOT_EXPRESS = {
-    "abaqus": "k_T(p): the stick stiffness follows k_N(p); *FRICTION takes one elastic slip (k_T matches at p = {p} only)",
-    "calculix": "k_T(p): *FRICTION takes one stick slope (k_T at p = {p})",
+    "abaqus": "k_T(p): the stick stiffness follows k_N(p); *FRICTION takes one elastic slip: k_T matches only at p = {p}",
+    "calculix": "k_T(p): *FRICTION takes one stick slope: k_T at p = {p}",
 }
 
 
@@ -36,7 +36,7 @@ def _cannot_express(fmt: str, stick: dict | None, kt_at_given: bool) -> list[str
     (``stick``: interface.export.stick_stiffness), naming the pressure k_T is taken at."""
     if stick is None:
         return list(CANNOT_EXPRESS[fmt])
-    where = f"{stick['pressure']:.6g}" + (" (--kt-at)" if kt_at_given else " (the default: the geometric middle)")
+    where = f"{stick['pressure']:.6g}" + (", from --kt-at" if kt_at_given else ", the default (the geometric middle)")
     return [KT_CANNOT_EXPRESS[fmt].format(p=where), *CANNOT_EXPRESS[fmt]]
 
 
