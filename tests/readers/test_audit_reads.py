@@ -303,3 +303,12 @@ def test_an_instrument_channel_is_checked_against_the_cell_limit_before_it_is_re
     monkeypatch.setenv("ROUGHCONTACT_MAX_CELLS", "100")
     with pytest.raises(ValueError, match=r"a.x3p: channel 0 declares 16 x 12 points: 192 exceed the limit of 100"):
         read_height_map(tmp_path / "a.x3p")
+
+
+@pytest.mark.parametrize("dx, rms, unit", [(2.0, 0.5, "nm"),      # an AFM scan
+                                           (0.1, 0.005, "mm"),    # stylus profilometry in mm
+                                           (0.8, 0.02, "um"),     # an optical profiler
+                                           (2e-9, 3e-10, "m")])   # an AFM scan in SI units
+def test_maps_of_real_instruments_are_not_doubted(dx, rms, unit):
+    m = HeightMap(Z / np.std(Z) * rms, dx, dx, unit, unit, "npy")
+    assert unit_warning(m, unit, unit, "scan") is None
