@@ -83,7 +83,8 @@ def test_vendor_csv_x_and_y_calibration_in_different_units(tmp_path):
     assert (m.dx, m.dy, m.xy_unit, m.z_unit) == (1.25, pytest.approx(0.5), "um", "um")
 
 
-@pytest.mark.parametrize("line, match", [('"XY calibration","abc","um/pixel"', r"line 1: 'XY calibration' needs a number"),
+@pytest.mark.parametrize("line, match", [('"XY calibration","abc","um/pixel"',
+                                          r"line 1: 'XY calibration' needs a number"),
                                          ('"XY calibration","1.25","furlong/pixel"', r"line 1: unknown length unit"),
                                          ('"XY calibration","-1","um/pixel"', r"line 1: .* must be positive"),
                                          ('"Z unit","volts"', r"line 1: unknown length unit")])
@@ -250,7 +251,8 @@ def test_the_grid_the_points_span_is_checked_before_it_is_allocated(tmp_path, mo
     path = tmp_path / "sparse.xyz"
     path.write_text(xyz_text(flat % 1000 * 0.5, flat // 1000 * 0.5, rng.normal(size=flat.size), "x, y, z"))
     sparse = read_height_map(path)
-    assert sparse.heights.shape == (1000, 1000) and "2000 points fill 0 % of the 1000 x 1000 lattice" in sparse.notes[-1]
+    assert sparse.heights.shape == (1000, 1000)
+    assert "2000 points fill 0 % of the 1000 x 1000 lattice" in sparse.notes[-1]
     monkeypatch.setenv("ROUGHCONTACT_MAX_CELLS", "100000")
     with pytest.raises(ValueError, match=r"the points' lattice \(x step 0.5, y step 0.5\) spans 1000 x 1000 grid "
                                          r"points: 1e\+06 exceed the limit of 100000 .*ROUGHCONTACT_MAX_CELLS"):

@@ -146,7 +146,8 @@ def unit_warning(found: HeightMap, xy_unit: str, z_unit: str, file, *, dx: float
         metres = abs(value) * lengths.METRES[lengths.normalise(unit)]
         if low <= metres <= high:
             continue
-        doubts.append(f"{'an' if quantity[0] == 'r' else 'a'} {quantity} of {value:.3g} {unit} ({lengths.in_metres(metres)})")
+        article = "an" if quantity[0] == "r" else "a"
+        doubts.append(f"{article} {quantity} of {value:.3g} {unit} ({lengths.in_metres(metres)})")
         meant = lengths.likely_unit(value, unit, quantity)
         if meant is not None:
             fixes.append((option, meant))

@@ -257,7 +257,8 @@ def _coordinate_axes(table, header, path):
     dx, dy = abs(along_x[1]), abs(along_y[1])
     note = (f"{path}: the first row and column are coordinates (x {x_row[0]:g} to {x_row[-1]:g}, "
             f"y {body[0, 0]:g} to {body[-1, 0]:g}): dx = {dx:g}, dy = {dy:g}"
-            + (f"; the map is flipped along {' and '.join(flipped)} so that the coordinates increase" if flipped else ""))
+            + (f"; the map is flipped along {' and '.join(flipped)} so that the coordinates increase"
+               if flipped else ""))
     return z, (dx, dy), note
 
 
