@@ -39,11 +39,14 @@ naming its line. ``*BOUNDARY, OP=NEW`` (removing supports) is an error too.
 from __future__ import annotations
 
 import math
+import re
+import sys
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from .deck_syntax import DeckError, Keyword, read_blocks
+from ..limits import describe
+from .deck_syntax import DeckError, Keyword, check_count, read_blocks, shown
 
 __all__ = ["Deck", "Material", "ContactPair", "Step", "read_deck", "ELEMENT_TYPES", "IGNORED", "DeckError"]
 
@@ -58,6 +61,12 @@ IGNORED = ("NODE PRINT", "EL PRINT", "NODE FILE", "EL FILE", "CONTACT PRINT", "C
            "ELEMENT OUTPUT", "CONTACT OUTPUT", "OUTPUT", "SECTION PRINT", "ENERGY PRINT", "FACE PRINT", "MONITOR")
 _SYMMETRY = {"XSYMM": (1, 1), "YSYMM": (2, 2), "ZSYMM": (3, 3), "PINNED": (1, 3), "ENCASTRE": (1, 3)}
 MAX_INCREMENTS = 100_000
+#: the largest id (node, element) the engine indexes: its id arrays are 64-bit integers
+MAX_ID = int(np.iinfo(np.int64).max)
+_INTEGER = re.compile(r"[+-]?[0-9]+")
+#: a real as Fortran reads it: digits with an optional point and an exponent E or D (no "inf",
+#: "nan", "1_000" or non-ASCII digits, which float() would accept)
+_REAL = re.compile(r"[+-]?([0-9]+\.?[0-9]*|\.[0-9]+)([eEdD][+-]?[0-9]+)?")
 
 
 @dataclass(frozen=True)
@@ -130,22 +139,27 @@ class Deck:
 
 
 def _int(text: str, where: str, what: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        raise DeckError(where, f"{what} must be an integer, got {text!r}") from None
+    """A positive integer of at most :data:`MAX_ID` (ids, dofs, increments of a deck line)."""
+    if not _INTEGER.fullmatch(text):
+        raise DeckError(where, f"{what} must be an integer, got {describe(text)}")
+    if len(text.lstrip("+-").lstrip("0")) > len(str(MAX_ID)):  # before int(): no huge conversions
+        raise DeckError(where, f"{what} must be a positive integer of at most {MAX_ID} (the engine indexes with "
+                               f"64-bit integers), got {describe(text)}")
+    value = int(text)
     if value <= 0:
         raise DeckError(where, f"{what} must be positive, got {value}")
+    if value > MAX_ID:
+        raise DeckError(where, f"{what} must be a positive integer of at most {MAX_ID} (the engine indexes with "
+                               f"64-bit integers), got {value}")
     return value
 
 
 def _real(text: str, where: str, what: str) -> float:
-    try:
-        value = float(text.replace("d", "e").replace("D", "E"))
-    except ValueError:
-        raise DeckError(where, f"{what} must be a number, got {text!r}") from None
+    if not _REAL.fullmatch(text):
+        raise DeckError(where, f"{what} must be a number, got {describe(text)}")
+    value = float(text.replace("d", "e").replace("D", "E"))
     if not math.isfinite(value):
-        raise DeckError(where, f"{what} must be finite, got {text!r}")
+        raise DeckError(where, f"{what} must be finite, got {describe(text)}")
     return value
 
 
@@ -197,7 +211,8 @@ class _Reader:
             if i not in defined:
                 raise DeckError(where, f"{kind} {i} is not defined")
             return [i]
-        raise DeckError(where, f"missing set: no {keyword} {name} (nor {'an' if kind == 'element' else 'a'} {kind} id)")
+        raise DeckError(where, f"missing set: no {keyword} {shown(name)} (nor {'an' if kind == 'element' else 'a'} "
+                               f"{kind} id)")
 
     def _node_refs(self, text: str, where: str) -> list[int]:
         return self._refs(text, where, "node")
@@ -205,14 +220,18 @@ class _Reader:
     def _element_refs(self, text: str, where: str) -> list[int]:
         return self._refs(text, where, "element")
 
-    def _generate(self, kw: Keyword, line, what: str) -> list[int]:
+    def _generate(self, kw: Keyword, line, what: str) -> range:
+        """The ids of a GENERATE line (first, last[, increment]), their count checked against
+        the limit "deck_items" before anything is built."""
         if len(line.fields) not in (2, 3):
             raise DeckError(line.where, f"*{kw.name}, GENERATE needs: first, last[, increment]")
         first, last = (_int(f, line.where, what) for f in line.fields[:2])
         step = _int(line.fields[2], line.where, "the increment") if len(line.fields) == 3 else 1
         if last < first:
             raise DeckError(line.where, f"GENERATE: last {last} < first {first}")
-        return list(range(first, last + 1, step))
+        ids = range(first, last + 1, step)
+        check_count(len(ids), "deck_items", line.where, f"*{kw.name}, GENERATE {first}, {last}, {step}: the ids")
+        return ids
 
     # -- keywords ---------------------------------------------------------------------------
     def heading_(self, kw):
@@ -239,7 +258,7 @@ class _Reader:
         if etype not in ELEMENT_TYPES:
             why = _UNSUPPORTED_ELEMENTS.get(etype[:4] if etype.startswith("C3D8") else etype,
                                             "the engine runs 20-node hexahedra (C3D20, C3D20R) only")
-            raise DeckError(kw.where, f"unknown element type {etype}: {why}")
+            raise DeckError(kw.where, f"unknown element type {shown(etype)}: {why}")
         n = ELEMENT_TYPES[etype]
         elset = kw.param("ELSET")
         ids, fields, start = [], [], ""
@@ -250,7 +269,12 @@ class _Reader:
             if len(fields) < n + 1:
                 continue  # a connectivity continued on the next line without a trailing comma
             if len(fields) > n + 1:
-                raise DeckError(start, f"{etype} element with {len(fields) - 1} nodes (needs {n})")
+                before = len(fields) - len(line.fields)  # fields of the element's lines before this one
+                if before:  # a short element, or a line with too many nodes: say both counts
+                    raise DeckError(start, f"{etype} element {shown(fields[0])} with {before - 1} nodes, and the next "
+                                           f"line ({line.where}) has {len(line.fields)} fields, more than the "
+                                           f"{n + 1 - before} missing ({etype} needs {n})")
+                raise DeckError(start, f"{etype} element {shown(fields[0])} with {len(fields) - 1} nodes ({etype} needs {n})")
             eid = _int(fields[0], start, "an element id")
             if eid in self.elements:
                 raise DeckError(start, f"element {eid} is defined twice")
@@ -265,7 +289,7 @@ class _Reader:
             ids.append(eid)
             fields = []
         if fields:
-            raise DeckError(start, f"{etype} element with {len(fields) - 1} nodes (needs {n})")
+            raise DeckError(start, f"{etype} element {shown(fields[0])} with {len(fields) - 1} nodes ({etype} needs {n})")
         if elset:
             self.elsets.setdefault(elset.strip('"').upper(), set()).update(ids)
 
@@ -287,9 +311,10 @@ class _Reader:
         for line in kw.data:
             if kw.flag("GENERATE"):
                 ids = self._generate(kw, line, f"a{'n' if what == 'element' else ''} {what} id")
-                missing = [i for i in ids if i not in defined]
-                if missing:
-                    raise DeckError(line.where, f"GENERATE: {what} {missing[0]} is not defined")
+                # lazily: a missing id turns up within the first len(defined) + 1 ids
+                missing = next((i for i in ids if i not in defined), None)
+                if missing is not None:
+                    raise DeckError(line.where, f"GENERATE: {what} {missing} is not defined")
                 members.update(ids)
             else:
                 for f in line.fields:
@@ -305,7 +330,7 @@ class _Reader:
         for line in kw.data:
             if len(line.fields) != 2:
                 raise DeckError(line.where, "*SURFACE data: element or elset, S1 ... S6")
-            face = _face_number(line, "S", f"face {line.fields[1]!r} is not one of S1 ... S6")
+            face = _face_number(line, "S", f"face {describe(line.fields[1])} is not one of S1 ... S6")
             faces += [(eid, face) for eid in self._element_refs(line.fields[0], line.where)]
         self.where[("surface", name)] = kw.where
 
@@ -419,7 +444,7 @@ class _Reader:
         for line in kw.data:
             if len(line.fields) != 3:
                 raise DeckError(line.where, "*DLOAD data: element or elset, P1 ... P6, pressure")
-            face = _face_number(line, "P", f"load type {line.fields[1]!r}: only face pressures P1 ... P6")
+            face = _face_number(line, "P", f"load type {describe(line.fields[1])}: only face pressures P1 ... P6")
             value = _real(line.fields[2], line.where, "the pressure")
             for eid in self._element_refs(line.fields[0], line.where):
                 target[(eid, face)] = value
@@ -428,18 +453,29 @@ class _Reader:
     def step(self, kw):
         if self.step_open is not None:
             raise DeckError(kw.where, "*STEP inside a step (missing *END STEP)")
-        nlgeom = (kw.param("NLGEOM") or "NO").upper()
-        if nlgeom not in ("NO", "NONE"):
-            raise DeckError(kw.where, "*STEP, NLGEOM: the engine is geometrically linear (give NLGEOM=NO)")
-        kw.param("INC")
+        if kw.flag("NLGEOM"):
+            value = (kw.params["NLGEOM"] or "").strip('"').upper()
+            if value not in ("NO", "NONE"):
+                given = f"NLGEOM={shown(value)}" if value else "NLGEOM (without a value: YES, as Abaqus reads it)"
+                raise DeckError(kw.where, f"*STEP, {given}: geometric nonlinearity (large displacements and rotations) "
+                                          "is not supported: the engine is geometrically linear (give NLGEOM=NO or "
+                                          "leave it out)")
+        inc = kw.param("INC")
         kw.param("NAME")
-        self.step_open = {"where": kw.where, "fractions": None}
+        self.step_open = {"where": kw.where, "fractions": None,
+                          "inc": _int(inc, kw.where, "*STEP, INC= (the maximum number of increments)") if inc else None}
+
+    #: *STATIC's data fields beyond the initial increment and the period (Abaqus, CalculiX)
+    _STATIC_IGNORED = ("the minimum increment", "the maximum increment")
 
     def static(self, kw):
         if self.step_open is None:
             raise DeckError(kw.where, "*STATIC outside a *STEP")
         kw.flag("DIRECT")
         kw.param("SOLVER")
+        if len(kw.data) > 1:
+            raise DeckError(kw.data[1].where, "*STATIC takes one data line: initial increment, period[, minimum, "
+                                              "maximum increment]")
         fields = kw.data[0].fields if kw.data else ()
         where = kw.data[0].where if kw.data else kw.where
         initial = _real(fields[0], where, "the initial increment") if len(fields) > 0 and fields[0] else 1.0
@@ -448,9 +484,24 @@ class _Reader:
             raise DeckError(where, f"*STATIC: the step period must be positive, got {period:g}")
         if not initial > 0.0:
             raise DeckError(where, f"*STATIC with zero increments: the initial increment must be positive, got {initial:g}")
-        n = max(1, math.ceil(period / initial * (1.0 - 1e-12)))
-        if n > MAX_INCREMENTS:
-            raise DeckError(where, f"*STATIC: {n} increments (period / initial increment) exceed {MAX_INCREMENTS}")
+        if initial < sys.float_info.min:  # subnormal: period / initial overflows, and no increment is that small
+            raise DeckError(where, f"*STATIC: the initial increment {initial:g} is subnormal: it must be positive and "
+                                   f"normal (at least {sys.float_info.min:g}) and at most the step period {period:g}")
+        if initial > period:  # as ccx: "initial increment size exceeds step size"
+            raise DeckError(where, f"*STATIC: the initial increment {initial:g} exceeds the step period {period:g} "
+                                   "(it must be positive, normal and at most the period)")
+        ratio = period / initial  # finite and >= 1 (inf only beyond MAX_INCREMENTS, refused first)
+        if not ratio <= MAX_INCREMENTS * (1.0 + 1e-12):
+            raise DeckError(where, f"*STATIC: {ratio:.4g} increments (period {period:g} / initial increment "
+                                   f"{initial:g}) exceed {MAX_INCREMENTS}")
+        n = max(1, math.ceil(ratio * (1.0 - 1e-12)))
+        for k, text in enumerate(fields[2:], start=3):
+            if not text:
+                continue
+            what = self._STATIC_IGNORED[k - 3] if k - 3 < len(self._STATIC_IGNORED) else f"field {k}"
+            value = _real(text, where, f"*STATIC {what}")
+            self.notes.append(f"{where}: *STATIC {what} {value:g} ignored: the step runs {n} fixed increments "
+                              "(period / initial increment), each halved when Newton fails (up to six times)")
         self.step_open["fractions"] = tuple((k + 1) * initial / period for k in range(n - 1)) + (1.0,)
         self.step_open["period"] = period
 
@@ -459,6 +510,10 @@ class _Reader:
             raise DeckError(kw.where, "*END STEP without *STEP")
         if self.step_open["fractions"] is None:
             raise DeckError(self.step_open["where"], "a step needs *STATIC (the only procedure supported)")
+        if self.step_open["inc"] is not None:
+            n = len(self.step_open["fractions"])
+            self.notes.append(f"{self.step_open['where']}: *STEP, INC={self.step_open['inc']} (the maximum number of "
+                              f"increments) ignored: the step runs its {n} increments of *STATIC")
         self.steps.append(Step(len(self.steps) + 1, self.step_open["where"], self.step_open["period"],
                                self.step_open["fractions"],
                                dict(self.state["boundary"]), dict(self.state["cload"]), dict(self.state["dload"])))
@@ -490,7 +545,7 @@ def read_deck(path, text: str | None = None) -> Deck:
             r.notes.append(f"{kw.where}: *{kw.name} ignored (output requests: use --json / --vtu)")
             continue
         if kw.name not in _HANDLERS:
-            raise DeckError(kw.where, f"unsupported keyword *{kw.name} (docs/own-model.md lists the subset)")
+            raise DeckError(kw.where, f"unsupported keyword *{shown(kw.name)} (docs/own-model.md lists the subset)")
         if kw.name not in _OPTIONS:
             r.context = None
         if kw.data and kw.name not in _TAKES_DATA:

@@ -4,18 +4,30 @@ A deck is a sequence of keyword blocks: a keyword line ``*NAME, PARAM=VALUE, FLA
 its data lines (comma-separated fields). This module only reads that structure; what a keyword
 means is :mod:`.deck`'s. The rules implemented (those of Abaqus and CalculiX):
 
-* a line starting with ``**`` is a comment; blank lines are skipped;
+* lines end at LF, a CR just before it dropped (CR LF): the lines CalculiX's ``readinput.c``
+  reads with ``fgets``, at most 1319 bytes each (a longer line it reads as several lines, so
+  one is an error here). Nothing else breaks a line: a vertical tab, form feed, U+001C-U+001E,
+  NEL (U+0085) or U+2028/U+2029 is a character of its line, allowed in a comment and an error
+  anywhere else (as is every other control character but the tab, and a byte-order mark: the
+  first line of a file that starts with one is not a keyword line for CalculiX);
+* a line whose first characters other than blanks (spaces, tabs) are ``**`` is a comment; blank
+  lines are skipped;
 * keyword names and parameter names are case-insensitive and their inner spaces normalised
   (``*solid  section`` is ``*SOLID SECTION``); parameter values and data fields keep their text
   (the reader upper-cases names of sets, materials and surfaces, as both codes do);
-* a keyword line that ends with a comma continues on the next line;
+* a keyword line that ends with a comma continues on the next line (comments between skipped);
 * a data line that ends with a comma continues on the next line (element connectivities over
-  two lines); fields are stripped, empty trailing fields dropped;
-* ``*INCLUDE, INPUT=file`` inserts another file in place (nested; a path relative to the
-  including file's folder, as ccx sees it when run in the deck's folder); a cycle is an error.
+  two lines); fields are stripped of blanks, empty trailing fields dropped;
+* ``*INCLUDE, INPUT=file`` inserts another file in place (nested up to
+  ``ROUGHCONTACT_MAX_INCLUDE_DEPTH`` levels; a path relative to the including file's folder, as
+  ccx sees it when run in the deck's folder); a cycle is an error. Every file is read through
+  :mod:`roughcontact.limits` (a regular file within the size limit), and the deck with all its
+  included files together within that limit too (a file included many times over).
 
-Every block and data line remembers its file and line number, so that every error the reader
-raises (:class:`DeckError`) names where it comes from: ``model.inp:12: ...``.
+Every block and data line remembers its file and line number (:class:`Where`), so that every
+error the reader raises (:class:`DeckError`) names where it comes from: ``model.inp:12: ...``.
+A file included from outside the main deck's folder may be any file the user can read: an error
+on one of its lines names the file and line but does not quote the line (docs/own-model.md).
 """
 
 from __future__ import annotations
@@ -24,17 +36,68 @@ import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
-__all__ = ["DeckError", "DataLine", "Keyword", "read_blocks", "parse_blocks"]
+from .. import limits
 
-_CONTROL = re.compile(r"[\x00-\x08\x0a-\x1f\x7f]")
+__all__ = ["DeckError", "DeckLimitError", "DataLine", "Keyword", "Where", "read_blocks", "parse_blocks", "shown",
+           "MAX_LINE_BYTES"]
+
+#: refused outside comments: C0 controls but the tab, DEL, C1 controls (NEL U+0085 among them),
+#: the line and paragraph separators U+2028/U+2029 and the byte-order mark U+FEFF
+_CONTROL = re.compile("[\x00-\x08\x0a-\x1f\x7f-\x9f\u2028\u2029\ufeff]")
+#: CalculiX reads a line with fgets(buff, 1320, f) (readinput.c): at most 1319 bytes
+MAX_LINE_BYTES = 1319
+_BLANKS = " \t"  # what CalculiX removes from a line (readinput.c); str.strip() would remove \x0b, \x1c, U+2028 ...
+
+
+def shown(text: str) -> str:
+    """A name from the deck as a message shows it: as written if short and printable, else
+    through :func:`limits.describe` (quoted, cut)."""
+    return text if len(text) <= 60 and text.isprintable() else limits.describe(text)
+
+
+class Where(str):
+    """``file:line`` of a deck line. ``outside``: the file lies outside the main deck's folder
+    (an error there does not quote the line); ``via``: where it was included from."""
+
+    outside: bool = False
+    via: str = ""
+
+
+def _where(path: Path, line: int, outside: bool = False, via: str = "") -> Where:
+    w = Where(f"{path}:{line}")
+    w.outside, w.via = outside, via
+    return w
 
 
 class DeckError(ValueError):
-    """A deck that cannot be read: the message starts with ``file:line:``."""
+    """A deck that cannot be read: the message starts with ``file:line:``. On a line of a file
+    outside the main deck's folder (:attr:`Where.outside`) the message does not quote the line
+    unless ``quotes=False`` says it quotes nothing of it."""
 
-    def __init__(self, where: str, message: str):
+    def __init__(self, where: str, message: str, *, quotes: bool = True):
+        if quotes and getattr(where, "outside", False):
+            message = ("the deck cannot use this line (a file outside the deck's folder, included at "
+                       f"{where.via}: its lines are not quoted; see docs/own-model.md for what a deck may hold)")
         self.where = where
         super().__init__(f"{where}: {message}")
+
+
+class DeckLimitError(DeckError, limits.InputLimitError):
+    """A deck beyond one of :data:`roughcontact.limits.LIMITS` (file size, *INCLUDE nesting, ids)."""
+
+
+def _limited(where, exc: Exception):
+    """A DeckError at ``where`` with the message of a limits error (a limit or an unreadable file)."""
+    cls = DeckLimitError if isinstance(exc, limits.InputLimitError) else DeckError
+    return cls(where, str(exc), quotes=False)
+
+
+def check_count(count, name: str, where, what: str) -> int:
+    """:func:`limits.check_count` as a DeckLimitError at ``where``."""
+    try:
+        return limits.check_count(count, name, what)
+    except limits.InputLimitError as exc:
+        raise _limited(where, exc) from None
 
 
 @dataclass(frozen=True)
@@ -79,7 +142,7 @@ class Keyword:
         """DeckError naming the first parameter that is neither read nor in ``allowed``."""
         for name in self.params:
             if name not in self._used and name not in allowed:
-                raise DeckError(self.where, f"*{self.name}: the parameter {name} is not supported here")
+                raise DeckError(self.where, f"*{self.name}: the parameter {shown(name)} is not supported here")
 
 
 def _normalise(name: str) -> str:
@@ -87,50 +150,115 @@ def _normalise(name: str) -> str:
 
 
 def _split(text: str) -> list[str]:
-    return [f.strip() for f in text.split(",")]
+    return [f.strip(_BLANKS) for f in text.split(",")]
 
 
-def _logical_lines(path: Path, stack: tuple[Path, ...], text: str | None = None):
-    """(text, where) of every non-comment, non-blank line, *INCLUDE expanded, continuations
-    of keyword lines joined (data continuations are joined by :func:`parse_blocks`)."""
-    if text is None:
-        try:
-            text = path.read_text(encoding="utf-8", errors="strict")
-        except UnicodeDecodeError as exc:
-            raise DeckError(f"{path}", f"not a text file (UTF-8): {exc.reason}") from None
-    raw = text.splitlines()
-    i = 0
-    while i < len(raw):
-        line, start = raw[i].strip(), i + 1
-        i += 1
+def _lines(text: str):
+    """(line number, line) of ``text`` as CalculiX reads them (module docstring): split at LF
+    only, a CR before it dropped."""
+    start, n = 0, 0
+    while start < len(text):
+        end = text.find("\n", start)
+        end = len(text) if end < 0 else end
+        n += 1
+        yield n, text[start:end - 1] if end > start and text[end - 1] == "\r" else text[start:end]
+        start = end + 1
+
+
+def _significant(path: Path, text: str, outside: bool, via: str):
+    """(text without surrounding blanks, Where) of the lines of one file that are neither blank
+    nor comments; DeckError on a control character or an overlong line."""
+    if text.startswith("\ufeff"):
+        raise DeckError(_where(path, 1, outside, via), "the file starts with a byte-order mark (U+FEFF), which "
+                        "CalculiX reads as part of the first line: save the file as UTF-8 without BOM", quotes=False)
+    for n, raw in _lines(text):
+        if len(raw) > MAX_LINE_BYTES // 4 and len(raw.encode("utf-8", "surrogatepass")) > MAX_LINE_BYTES:
+            raise DeckError(_where(path, n, outside, via), f"a line of {len(raw.encode('utf-8', 'surrogatepass'))} "
+                            f"bytes: CalculiX reads at most {MAX_LINE_BYTES} bytes per line and the rest as a line "
+                            "of its own (split it; a data line continues after a trailing comma)", quotes=False)
+        line = raw.strip(_BLANKS)
         if not line or line.startswith("**"):
             continue
-        where = f"{path}:{start}"
-        if _CONTROL.search(line):
-            raise DeckError(where, "control character in the line")
-        if line.startswith("*"):
-            while line.endswith(",") and i < len(raw) and not raw[i].lstrip().startswith("*"):
-                nxt = raw[i].strip()
-                i += 1
-                if nxt and not nxt.startswith("**"):
-                    line += " " + nxt
-            name, *rest = _split(line[1:])
-            if _normalise(name) == "INCLUDE":
-                target = None
-                for item in rest:
-                    key, _, value = item.partition("=")
-                    if _normalise(key) == "INPUT" and value.strip():
-                        target = value.strip().strip('"')
-                if target is None:
-                    raise DeckError(where, "*INCLUDE needs INPUT=<file>")
-                inc = (path.parent / target).resolve()
-                if inc in stack:
-                    raise DeckError(where, f"*INCLUDE of {target} makes a cycle")
-                if not inc.is_file():
-                    raise DeckError(where, f"*INCLUDE: no file {inc}")
-                yield from _logical_lines(inc, stack + (inc,))
-                continue
+        where = _where(path, n, outside, via)
+        bad = _CONTROL.search(line)
+        if bad:
+            raise DeckError(where, f"a control character (U+{ord(bad.group()):04X}) in the line, outside a comment "
+                                   "(CalculiX would read it as part of the line; only a tab may stand between fields)",
+                            quotes=False)
         yield line, where
+
+
+class _File:
+    """One file being read: its significant lines and one line of look-ahead."""
+
+    def __init__(self, path: Path, lines):
+        self.path, self.lines, self.ahead = path, lines, None
+
+    def next(self):
+        if self.ahead is not None:
+            item, self.ahead = self.ahead, None
+            return item
+        return next(self.lines, None)
+
+
+def _logical_lines(path: Path, text: str | None = None):
+    """(text, where) of every non-comment, non-blank line, *INCLUDE expanded (without
+    recursion: the nesting is bounded by a limit, not by Python's stack), continuations of
+    keyword lines joined (data continuations are joined by :func:`parse_blocks`)."""
+    root = path.parent
+    if text is None:
+        try:
+            text = limits.read_text(path, "deck")
+        except ValueError as exc:  # "deck PATH: why" as "PATH: why"
+            raise type(_limited(path, exc))(str(path), str(exc).removeprefix(f"deck {path}: "), quotes=False) from None
+    total, limit = len(text), limits.max_input_bytes()
+    stack = [_File(path, _significant(path, text, False, ""))]
+    while stack:
+        f = stack[-1]
+        item = f.next()
+        if item is None:
+            stack.pop()
+            continue
+        line, where = item
+        if not line.startswith("*"):
+            yield line, where
+            continue
+        while line.endswith(","):  # a keyword line continued on the next line
+            nxt = f.next()
+            if nxt is not None and nxt[0].startswith("*"):
+                f.ahead = nxt
+            if nxt is None or f.ahead is not None:
+                break
+            line += " " + nxt[0]
+        name, *rest = _split(line[1:])
+        if _normalise(name) != "INCLUDE":
+            yield line, where
+            continue
+        target = None
+        for item in rest:
+            key, _, value = item.partition("=")
+            if _normalise(key) == "INPUT" and value.strip(_BLANKS):
+                target = value.strip(_BLANKS).strip('"')
+        if target is None:
+            raise DeckError(where, "*INCLUDE needs INPUT=<file>")
+        inc = (f.path.parent / target).resolve()
+        if any(inc == g.path for g in stack):
+            raise DeckError(where, f"*INCLUDE of {shown(target)} makes a cycle")
+        if not inc.exists():
+            raise DeckError(where, f"*INCLUDE: no file {inc}")
+        check_count(len(stack), "include_depth", where, "*INCLUDE nesting")
+        try:
+            inc_text = limits.read_text(inc, "*INCLUDE file")
+        except ValueError as exc:  # no such file, not a regular file, too large, not UTF-8
+            raise _limited(where, exc) from None
+        total += len(inc_text)
+        if total > limit:
+            var = limits.LIMITS["input_mb"][0]
+            raise DeckLimitError(where, f"*INCLUDE file {inc}: the deck with its *INCLUDE files exceeds the limit of "
+                                        f"{limit / 1048576:.0f} MB ({limits.LIMITS['input_mb'][2]}, counted over the "
+                                        f"deck and every file it includes; set {var} to raise it, in MB)", quotes=False)
+        outside = not inc.is_relative_to(root)
+        stack.append(_File(inc, _significant(inc, inc_text, outside, str(where))))
 
 
 def parse_blocks(lines) -> list[Keyword]:
@@ -160,8 +288,8 @@ def parse_blocks(lines) -> list[Keyword]:
                 key, eq, value = item.partition("=")
                 key = _normalise(key)
                 if key in params:
-                    raise DeckError(at, f"*{name}: the parameter {key} is given twice")
-                params[key] = value.strip() if eq else None
+                    raise DeckError(at, f"*{name}: the parameter {shown(key)} is given twice")
+                params[key] = value.strip(_BLANKS) if eq else None
             continue
         if name is None:
             raise DeckError(at, "a data line before the first keyword")
@@ -181,7 +309,4 @@ def parse_blocks(lines) -> list[Keyword]:
 def read_blocks(path, text: str | None = None) -> list[Keyword]:
     """The keyword blocks of the deck file ``path`` (module docstring for the rules), or of
     ``text`` named ``path`` (its *INCLUDEs relative to path's folder)."""
-    path = Path(path)
-    if text is None and not path.is_file():
-        raise DeckError(str(path), "no such file")
-    return parse_blocks(_logical_lines(path.resolve(), (path.resolve(),), text))
+    return parse_blocks(_logical_lines(Path(path).resolve(), text))
