@@ -68,7 +68,7 @@ rule verification_report:
     """paper_figures/VERIFICATION.md (+ CSV and a JSON summary) from every scene's checks and
     the speed-against-error report."""
     input:
-        checks=scene_checks() + fe_checks(),
+        checks=scene_checks() + fe_checks() + gate_anchor_checks(),
         speed="paper_figures/speed_vs_error.md",
         fe_speed="paper_figures/fe_benchmark.md",
         calculix="paper_figures/calculix.md",
@@ -82,7 +82,7 @@ rule verification_report:
     log:
         "logs/verify/report.log",
     params:
-        scene_titles={**{name: sc["title"] for name, sc in SCENES.items()}, **FE_TITLES,
+        scene_titles={**{name: sc["title"] for name, sc in SCENES.items()}, **FE_TITLES, **GATE_ANCHOR_TITLES,
                       "bem": "The BEM on closed forms (optional target bem)"},
         reference_dps=REFERENCE_DPS,
         bem=bem_report_input,

@@ -1,5 +1,5 @@
 """The punch's anchor checks (rule fe_punch_anchor): every run's equilibrium, friction limit,
-dissipation and frictionless bound from its written fields; paper_figures/fe_punch_anchor.md and
+dissipation, frictionless bound and energy balance from its written fields; paper_figures/fe_punch_anchor.md and
 results/verify/fe_punch_anchor.checks.csv."""
 
 from pathlib import Path
@@ -17,6 +17,7 @@ def run(paths, runs, cfg, d_attr, expected, out, log):
         # the quarter punch's top face [mm²] (input data: the run's geometry)
         area = {name: r.spec.geometry.punch_half_width ** 2 for name, r in runs.items()}
         checks = fe_anchors.punch_anchor_checks(runs, data, bounds, area, cfg["tolerances"], d_attr)
+        checks += fe_anchors.punch_energy_checks(runs, data, cfg["tolerances"]["energy"])
         checks = verify.apply_expectations(checks, yaml.safe_load(Path(expected).read_text()))
         for c in checks:
             logger.info("%s: %s (%s) %s", c.id, c.verdict, c.status, c.detail)

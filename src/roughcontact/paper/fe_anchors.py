@@ -15,7 +15,12 @@ not come out of the 3D engine (and needs no optional tool):
   patch load (Σ w p_N = p0 A + P), the tangential tractions obey the friction limit of the case
   (μ_min p_N ≤ |t_T| at slipping points, |t_T| ≤ μ_max p_N everywhere, 0 without friction),
   the reported dissipation equals Σ w t_T·u_T^p of the written fields, and lies below the
-  frictionless bound.
+  frictionless bound; and an energy balance (issue 29) that a common factor of the slips and D
+  does not pass: the plastic slips rebuilt from the written relative displacements (from the
+  nodal displacements, not from the law's state), tractions and tangential stiffnesses through
+  the elastic law (93) of the run's tangential form, and D as the work of the written tractions
+  on those slips, Σ_n Σ_q w_q t_T,n·Δu_T,n^p (backward Euler, the kernel's own rule), against the
+  reported slips and D.
 
 Tolerances are data (config.yaml ``fe_anchors``), each from a measured discretisation or
 round-off error. Pure functions (no I/O): the workflow scripts read and write.
@@ -23,6 +28,7 @@ round-off error. Pure functions (no I/O): the workflow scripts read and write.
 
 from __future__ import annotations
 
+import math
 from typing import TYPE_CHECKING, Any, Mapping
 
 import numpy as np
@@ -35,7 +41,7 @@ if TYPE_CHECKING:  # the runs' types, for the reader (this module only reads the
     from ..examples.punch import PunchRun
 
 __all__ = ["BEAM_SCENE", "PUNCH_SCENE", "anchored_beam_runs", "law_key", "beam_anchor_checks",
-           "punch_anchor_checks", "render_markdown"]
+           "punch_anchor_checks", "stiffness_fields", "rebuilt_slips", "punch_energy_checks", "render_markdown"]
 
 BEAM_SCENE, PUNCH_SCENE = "fe_beam_anchor", "fe_punch_anchor"
 
@@ -200,6 +206,121 @@ def punch_anchor_checks(runs: Mapping[str, PunchRun], data: Mapping[str, Any],
                               f"0 ≤ D = {d:.4g} N mm {'≤' if d <= b else '>'} frictionless bound {b:.4g} N mm",
                               "D lies between 0 and the frictionless bound (friction only reduces slip, |t_T| ≤ mu p_N)",
                               b, d, d - b, 0.0, "an upper bound, no tolerance", "N mm"))
+    return out
+
+
+def stiffness_fields(result) -> tuple[dict[str, tuple], dict[str, float]]:
+    """What the energy balance needs beyond :func:`roughcontact.examples.punch.to_dataset`, from a
+    :class:`~roughcontact.examples.punch.PunchResult`: (variables, attributes) for its dataset —
+    the tangential stiffnesses k_Tx, k_Ty = a k_N(u_N) (93) of every point at every level
+    [N/mm² per µm] (0 where open), the cut-backs per level, and those of the unloaded start
+    (u_N = 0), where the seating increment starts."""
+    from ..interface import friction
+
+    law, incs = result.material.normal, result.deck.increments
+    per_um = 1000.0 / result.material.length_per_mm  # law length unit → µm
+    closure = np.stack([inc.state[:, friction.U_N] for inc in incs])
+    kx, ky = law.tangential(closure)
+    kx0, ky0 = law.tangential(np.full(1, result.material.closure0))
+    unit = "N/mm^2/um"
+    variables = {f"k_T{a}": (("level", "point"), np.asarray(k, dtype=float) / per_um, {
+        "units": unit, "long_name": f"tangential stiffness k_T{a} = a k_N(u_N) of the elastic law (93)"})
+        for a, k in (("x", kx), ("y", ky))}
+    variables["cutbacks"] = ("level", np.asarray([inc.cutbacks for inc in incs], dtype=np.int32),
+                             {"units": "1", "long_name": "Newton cut-backs (halved sub-steps) of the level"})
+    return variables, {"k_Tx_unloaded": float(kx0[0]) / per_um, "k_Ty_unloaded": float(ky0[0]) / per_um}
+
+
+def rebuilt_slips(ds, tangential_form: str) -> dict[str, np.ndarray]:
+    """The plastic slips u_x^p, u_y^p [µm] (level, point) rebuilt from the written relative
+    displacements J (from the unloaded start: jump + seating_jump), tractions t and stiffnesses
+    k_T by the elastic law (93) of ``tangential_form`` (roughcontact.interface.friction,
+    "Tangential forms"), from the unloaded start (t = 0, u^p = 0, k_T of u_N = 0):
+
+    * incremental-end:   Δu^p_n = ΔJ_n − (t_n − t_n−1)/k_T,n
+    * incremental-start: Δu^p_n = ΔJ_n − (t_n − t_n−1)/k_T,n−1
+    * secant:            Δu^p_n = ΔJ_n − (t_n/k_T,n − t_n−1/k_T,n−1)
+
+    with t/k_T and Δu^p = 0 where the stiffness is 0 (an open point neither loads nor slips).
+    Exact for one step per level (``cutbacks`` 0); a cut-back level is two or more steps."""
+    out = {}
+    for a in "xy":
+        t = ds[f"t_{a}"].values
+        k = ds[f"k_T{a}"].values
+        J = ds[f"jump_{a}_um"].values + ds[f"seating_jump_{a}_um"].values[None, :]
+        prev = lambda x, first: np.vstack([np.full((1, x.shape[1]), first), x[:-1]])  # noqa: E731
+        tp, kp, Jp = prev(t, 0.0), prev(k, float(ds.attrs[f"k_T{a}_unloaded"])), prev(J, 0.0)
+
+        def over(x, y):
+            return np.divide(x, y, out=np.zeros_like(x), where=y > 0.0)
+
+        if tangential_form == "incremental-end":
+            elastic, active = over(t - tp, k), k > 0.0
+        elif tangential_form == "incremental-start":
+            elastic, active = over(t - tp, kp), kp > 0.0
+        elif tangential_form == "secant":
+            elastic, active = over(t, k) - over(tp, kp), k > 0.0
+        else:
+            raise ValueError(f"unknown tangential form {tangential_form!r}")
+        out[a] = np.cumsum(np.where(active, J - Jp - elastic, 0.0), axis=0)
+    return out
+
+
+def punch_energy_checks(runs: Mapping[str, PunchRun], data: Mapping[str, Any], cfg: Mapping[str, Any]) -> list[Check]:
+    """Two checks per frictional punch run (name → :class:`~roughcontact.examples.punch.PunchRun`,
+    ``data``: name → its dataset with :func:`stiffness_fields`): the written plastic slips against
+    :func:`rebuilt_slips` (largest difference relative to the largest relative displacement), and
+    the reported D — the work D_<max|end>_work_whole and D_max_area_whole — against the work of
+    the written tractions on the rebuilt slips, 4 Σ_q w_q Σ_n t_n·Δu^p_n, and 4 Σ_q w_q t·u^p at
+    the maximum load [N mm]. ``cfg``: config ``fe_anchors.punch.tolerances.energy``
+    {rtol, floor, why}."""
+    out = []
+    rtol, floor, why = float(cfg["rtol"]), float(cfg["floor"]), cfg["why"]
+    for name, run in runs.items():
+        if run.case == "frictionless":
+            continue
+        ds = data[name]
+        model, row = f"fe-{run.family}", name.split("-", 1)[1]
+        if "k_Tx" not in ds:
+            out.append(_check(PUNCH_SCENE, model, "slip_balance", row, False, "the run's dataset has no k_Tx, k_Ty "
+                              "(written by workflow/scripts/fe_punch_run.py since issue 29): re-run it",
+                              "the written slips against the elastic law", 0.0, math.nan, math.nan, rtol, why))
+            out.append(_check(PUNCH_SCENE, model, "work_balance", row, False, "no k_Tx, k_Ty in the dataset",
+                              "D against the work of the tractions", 0.0, math.nan, math.nan, rtol, why, "N mm"))
+            continue
+        cut = int(np.sum(ds["cutbacks"].values))
+        rebuilt = rebuilt_slips(ds, run.tangential_form)
+        scale = max(float(np.max(np.abs(ds[f"jump_{a}_um"].values + ds[f"seating_jump_{a}_um"].values)))
+                    for a in "xy")
+        dev = {a: np.abs(rebuilt[a] - ds[f"slip_{a}_um"].values) for a in "xy"}
+        a = max("xy", key=lambda k: float(dev[k].max()))
+        n, q = np.unravel_index(int(np.argmax(dev[a])), dev[a].shape)
+        err = float(dev[a].max()) / max(scale, 1e-300)
+        ok = err <= rtol and cut == 0
+        out.append(_check(PUNCH_SCENE, model, "slip_balance", row, ok,
+                          f"written u_{a}^p {ds[f'slip_{a}_um'].values[n, q]:.10g} um vs rebuilt from J, t, k_T "
+                          f"({run.tangential_form}) {rebuilt[a][n, q]:.10g} um at level {n}, point {q} "
+                          f"(x {float(ds['x'].values[q]):g}, y {float(ds['y'].values[q]):g} mm): {err:.1e} of the "
+                          f"largest |J| {scale:.4g} um" + (f"; {cut} cut-back(s): not one step per level" if cut else ""),
+                          "the written plastic slips follow from the written relative displacements and tractions "
+                          "through the elastic law (93)", 0.0, err, err, rtol, why))
+        w = ds["point_weight"].values
+        t = {a: ds[f"t_{a}"].values for a in "xy"}
+        du = {a: np.diff(np.vstack([np.zeros((1, w.size)), rebuilt[a]]), axis=0) for a in "xy"}
+        work = 4.0 * np.cumsum((t["x"] * du["x"] + t["y"] * du["y"]) @ w) / 1000.0  # µm → mm, whole punch
+        k_max = int(ds.attrs["max_index"])
+        area = 4.0 * float(w @ (t["x"][k_max] * rebuilt["x"][k_max] + t["y"][k_max] * rebuilt["y"][k_max])) / 1000.0
+        rows = [("D_max_work_whole", float(work[k_max])), ("D_end_work_whole", float(work[-1])),
+                ("D_max_area_whole", area)]
+        errs = [(abs(float(ds.attrs[attr]) - ours) / max(abs(ours), abs(float(ds.attrs[attr])), floor), attr,
+                 float(ds.attrs[attr]), ours) for attr, ours in rows]
+        err, attr, reported, ours = max(errs)
+        ok = err <= rtol and cut == 0
+        out.append(_check(PUNCH_SCENE, model, "work_balance", row, ok,
+                          f"{attr} {reported:.10g} N mm vs the work of the written tractions on the rebuilt slips "
+                          f"{ours:.10g} N mm (worst of work at max load, at the end, and t·u^p at max load): {err:.1e}",
+                          "D is the work of the run's own tractions on its own slips (energy balance)", ours, reported,
+                          err, rtol, why, "N mm"))
     return out
 
 
