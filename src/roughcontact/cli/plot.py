@@ -85,7 +85,7 @@ def _load(path: str) -> dict:
 
 
 def _run_plot(args) -> dict[str, Any]:
-    from ..io import WriteError
+    from ..write_errors import WriteError
     from ..plots import contact_curves, save_figure
     from ..plots.style import check_text
 

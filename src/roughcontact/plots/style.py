@@ -10,7 +10,7 @@ units in axis labels, legends as a person writes them, and saving (PNG and PDF).
   the data (:func:`legend_outside`) where the data fill the axes.
 * :func:`save` writes the PNG and a vector PDF beside it, both without creation dates, so two
   runs of the same data give the same files. A failed write (a full disk: OSError 28) is one
-  line, :class:`roughcontact.io.WriteError` (a ValueError) naming the file; nothing is left
+  line, :class:`roughcontact.write_errors.WriteError` (a ValueError) naming the file; nothing is left
   under its name.
 * :func:`check_text` refuses a text (a legend entry, a unit) matplotlib cannot typeset
   (unbalanced or too deeply nested mathtext) with one line naming it, before anything is drawn.
@@ -29,7 +29,7 @@ from typing import Iterator
 import numpy as np
 
 from ..files import atomic_path
-from ..io import write_error
+from ..write_errors import write_error
 
 __all__ = [
     "STYLE", "COLORS", "style", "new_figure", "save", "save_figure", "color", "ordered_colors", "pretty_unit",
@@ -121,7 +121,7 @@ def save(fig, path: str | os.PathLike, *, dpi: int | None = None) -> Path:
 
 def _write(fig, path: Path, fmt: str, dpi, metadata) -> None:
     """``fig.savefig`` to ``path`` atomically; an OSError (a full disk) as a one-line WriteError
-    naming the file, raised while the partial file still exists (io.write_error measures the
+    naming the file, raised while the partial file still exists (write_errors.write_error measures the
     free space then) and removed by atomic_path."""
     with atomic_path(path) as tmp:
         try:
