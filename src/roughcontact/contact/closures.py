@@ -91,9 +91,9 @@ def check_hardness(H, Y, E_star, how: str = "") -> None:
     Why: H is the mean pressure of a fully plastic indentation, H ≈ 2.8 Y (Tabor, *The Hardness
     of Metals*, 1951; eq. (68) of the paper, H = Y/0.354); the mean pressure already reaches
     1.1 Y at first yield (Johnson, *Contact Mechanics*, 1985, §6.2), so H ≤ Y is no metal's
-    hardness. A Hertz mean pressure p_m = (4E*/3π)(a/R) (Johnson eq. 4.25) equal to E* needs
-    a/R = 3π/4, far beyond the small-strain asperity theory the model rests on (real
-    materials have H/E* below ~0.1, diamond included), so H ≥ E* is unphysical for the model."""
+    hardness. A Hertz mean pressure p_m = (2/3)p_0 = (4E*/3π)(a/R) (Johnson 1985, §4.2) equal
+    to E* needs a/R = 3π/4 > 1, no small-strain asperity contact (the model's, sections 5–6);
+    real materials have H/E* below ~0.1, diamond included. So H ≥ E* is unphysical here."""
     if H is None:
         return
     h = positive("H (hardness)", H)
