@@ -4,7 +4,9 @@ punch results turns them — and the gate — red, with ccx nowhere involved."""
 
 from __future__ import annotations
 
+
 import dataclasses
+import math
 from pathlib import Path
 
 import numpy as np
@@ -190,3 +192,44 @@ def test_a_five_percent_punch_error_turns_the_gate_red(punch_data, names, attrs,
     assert not _gate(checks)["passed"]
     down = {**data, "coarse-a": _scaled(data["coarse-a"], names, 0.95, attrs)}
     assert {c.quantity for c in _punch_checks(runs, down) if c.verdict != verify.REPRODUCED} == red
+
+
+# ---------------------------------------------------------------------------------------------
+# the punch's energy balance (issue 29): slips and D scaled together
+# ---------------------------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def punch_energy_data():
+    """Coarse case-a runs under the quarter reading, one per tangential form, with the fields the
+    workflow writes (fe_anchors.stiffness_fields, as workflow/scripts/fe_punch_run.py adds them)."""
+    from dataclasses import replace
+
+    runs, data = {}, {}
+    for form in ("incremental-end", "incremental-start", "secant"):
+        name = f"coarse-{form}-a"
+        runs[name] = replace(punch_run("a"), tangential_form=form)
+        result = run_punch(runs[name])
+        variables, attrs = fe_anchors.stiffness_fields(result)
+        data[name] = to_dataset(result).assign(variables)
+        data[name].attrs.update(attrs)
+    return runs, data
+
+
+def test_the_punch_energy_balance_holds_on_real_runs_of_every_tangential_form(punch_energy_data):
+    runs, data = punch_energy_data
+    checks = fe_anchors.punch_energy_checks(runs, data, ANCHORS["punch"]["tolerances"]["energy"])
+    assert len(checks) == 6 and all(c.verdict == verify.REPRODUCED for c in checks), [c.detail for c in checks]
+    assert all(float(ds.attrs["D_max_work_whole"]) > 0.0 for ds in data.values())  # every form slips here
+
+
+def test_slips_and_D_scaled_together_turn_the_punch_anchor_red_on_a_real_run(punch_energy_data):
+    """The audit's injection that passed the issue-22 anchors: the written slips and every D by 1.05."""
+    runs, data = punch_energy_data
+    name = "coarse-incremental-end-a"
+    attrs = [a for a in data[name].attrs if a.startswith("D_")]
+    hit = {name: _scaled(data[name], ["slip_x_um", "slip_y_um"], attrs=attrs)}
+    old = fe_anchors.punch_anchor_checks({name: runs[name]}, hit, {name: math.inf}, {name: 100.0},
+                                         ANCHORS["punch"]["tolerances"], D_ATTR)
+    assert all(c.verdict == verify.REPRODUCED for c in old)  # issue 22's anchors: blind to it
+    checks = fe_anchors.punch_energy_checks({name: runs[name]}, hit, ANCHORS["punch"]["tolerances"]["energy"])
+    assert {c.quantity for c in checks if c.verdict != verify.REPRODUCED} == {"slip_balance", "work_balance"}
+    assert not _gate(checks)["passed"]

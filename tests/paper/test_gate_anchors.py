@@ -205,3 +205,96 @@ def test_a_dropped_row_or_a_changed_header_is_red():
     assert c.verdict == NOT_REPRODUCED and "1 rows vs 2 derived" in c.detail
     c = ga.csv_cell_check("t.csv", DERIVED.replace("ours", "mine"), DERIVED, CSV_TOL)
     assert c.verdict == NOT_REPRODUCED and "header" in c.detail
+
+
+# ---------------------------------------------------------------------------------------------
+# the punch: slips and D against the work of its own tractions on its own jumps
+# ---------------------------------------------------------------------------------------------
+ENERGY = CONFIG["fe_anchors"]["punch"]["tolerances"]["energy"]
+
+
+def _one_point_history(form):
+    """One contact point (area 1 mm²) pushed along x through the levels of a hand-made history
+    under the elastic law (93) of ``form`` with a friction limit |t_x| ≤ 3 N/mm², the stiffness
+    k_T changing from level to level: (dataset, expected slips [µm], expected work [N mm])."""
+    k = np.array([2.0, 2.0, 4.0, 1.0, 1.0])      # N/mm²/µm at levels 0..4; 2 at the unloaded start
+    J = np.array([0.5, 1.0, 2.0, 3.0, 2.5])      # µm from the unloaded start
+    t, up, t_prev, k_prev, up_prev, J_prev = [], [], 0.0, 2.0, 0.0, 0.0
+    for kn, Jn in zip(k, J):
+        kk = kn if form != "incremental-start" else k_prev
+        if form == "secant":
+            trial = kn * (t_prev / k_prev + (Jn - J_prev))
+        else:
+            trial = t_prev + kk * (Jn - J_prev)
+        tn = float(np.clip(trial, -3.0, 3.0))
+        stiff = kk if form != "secant" else kn
+        dup = (trial - tn) / stiff            # the return to the limit: the excess is plastic slip
+        t.append(tn)
+        up.append(up_prev + dup)
+        t_prev, k_prev, up_prev, J_prev = tn, kn, up_prev + dup, Jn
+    t, up = np.array(t), np.array(up)
+    work = 4.0 * float(np.sum(t * np.diff(np.concatenate([[0.0], up])))) / 1000.0
+    zeros = np.zeros((k.size, 1))
+    ds = xr.Dataset({"t_x": (("level", "point"), t[:, None]), "t_y": (("level", "point"), zeros),
+                     "slip_x_um": (("level", "point"), up[:, None]), "slip_y_um": (("level", "point"), zeros),
+                     "jump_x_um": (("level", "point"), J[:, None] - 0.5), "jump_y_um": (("level", "point"), zeros),
+                     "seating_jump_x_um": ("point", [0.5]), "seating_jump_y_um": ("point", [0.0]),
+                     "k_Tx": (("level", "point"), k[:, None]), "k_Ty": (("level", "point"), k[:, None]),
+                     "cutbacks": ("level", np.zeros(k.size, dtype=int)), "point_weight": ("point", [1.0])},
+                    coords={"x": ("point", [9.0]), "y": ("point", [1.0])},
+                    attrs={"k_Tx_unloaded": 2.0, "k_Ty_unloaded": 2.0, "max_index": 3})
+    ds.attrs["D_max_work_whole"] = 4.0 * float(np.sum((t * np.diff(np.concatenate([[0.0], up])))[:4])) / 1000.0
+    ds.attrs["D_end_work_whole"] = work
+    ds.attrs["D_max_area_whole"] = 4.0 * float(t[3] * up[3]) / 1000.0
+    return ds, up, work
+
+
+class _Run:
+    def __init__(self, form, case="a"):
+        self.tangential_form, self.case, self.family = form, case, "quadratic"
+
+
+@pytest.mark.parametrize("form", ["incremental-end", "incremental-start", "secant"])
+def test_the_slips_are_rebuilt_from_jumps_tractions_and_k_T_of_each_form(form):
+    from roughcontact.paper import fe_anchors
+
+    ds, up, work = _one_point_history(form)
+    assert up[-2] > 0.0 and work > 0.0  # the point slips: the history tests the plastic branch
+    rebuilt = fe_anchors.rebuilt_slips(ds, form)
+    np.testing.assert_allclose(rebuilt["x"][:, 0], up, rtol=0, atol=1e-14)
+    checks = fe_anchors.punch_energy_checks({"quadratic-quarter-a": _Run(form)}, {"quadratic-quarter-a": ds}, ENERGY)
+    assert [c.quantity for c in checks] == ["slip_balance", "work_balance"]
+    assert all(c.verdict == REPRODUCED for c in checks), [c.detail for c in checks]
+    assert checks[0].id == "numerics:fe_punch_anchor/fe-quadratic/slip_balance/run=quarter-a"
+
+
+@pytest.mark.parametrize("slips, d, red", [
+    (1.05, 1.05, {"slip_balance", "work_balance"}),   # the audit's injection: slips and D together
+    (1.05, 1.0, {"slip_balance"}),                    # the slips alone (D still the tractions' work)
+    (1.0, 1.05, {"work_balance"}),                    # D alone
+    (0.95, 0.95, {"slip_balance", "work_balance"}),
+])
+def test_slips_and_D_scaled_together_turn_the_punch_anchor_red(slips, d, red):
+    from roughcontact.paper import fe_anchors
+
+    ds, _, _ = _one_point_history("incremental-end")
+    ds["slip_x_um"] = ds["slip_x_um"] * slips
+    for attr in ("D_max_work_whole", "D_end_work_whole", "D_max_area_whole"):
+        ds.attrs[attr] *= d
+    checks = fe_anchors.punch_energy_checks({"q-quarter-a": _Run("incremental-end")}, {"q-quarter-a": ds}, ENERGY)
+    assert {c.quantity for c in checks if c.verdict == NOT_REPRODUCED} == red
+    bad = {c.quantity: c for c in checks}
+    if "slip_balance" in red:
+        assert "written u_x^p" in bad["slip_balance"].detail and "at level" in bad["slip_balance"].detail
+    if "work_balance" in red:
+        assert bad["work_balance"].error == pytest.approx(abs(d - 1.0) / max(d, 1.0), rel=1e-9)
+
+
+def test_a_frictionless_run_has_no_energy_checks_and_a_run_without_k_T_is_red():
+    from roughcontact.paper import fe_anchors
+
+    ds, _, _ = _one_point_history("incremental-end")
+    assert fe_anchors.punch_energy_checks({"q-f": _Run("incremental-end", "frictionless")}, {"q-f": ds}, ENERGY) == []
+    checks = fe_anchors.punch_energy_checks({"q-a": _Run("incremental-end")}, {"q-a": ds.drop_vars(["k_Tx", "k_Ty"])},
+                                            ENERGY)
+    assert [c.verdict for c in checks] == [NOT_REPRODUCED] * 2 and "re-run it" in checks[0].detail
