@@ -4,7 +4,6 @@ punch results turns them — and the gate — red, with ccx nowhere involved."""
 
 from __future__ import annotations
 
-
 import dataclasses
 import math
 from pathlib import Path
