@@ -208,3 +208,16 @@ def test_figures_14_15_draw(case, tmp_path):
     assert len({t.get_text() for t in labels}) == len(labels)  # one entry per label over both panels
     path = plots.save(fig, tmp_path / f"fig_{family}.png")
     assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and path.stat().st_size > 50_000
+
+
+@pytest.mark.parametrize("length, n, first", [(40.0, 6, 5.0 / 3.0), (100.0, 8, 2.5), (55.0, 3, 5.0), (30.0, 2, 10.0)])
+def test_first_size_ratio_fills_the_length(length, n, first):
+    """The grading ratio: n sizes first·q^i fill ``length`` (the geometric sum, to rounding) and
+    q is the positive root np.roots finds (to its LAPACK accuracy); found in plain floats, so the
+    shipped decks do not depend on the BLAS build (tests/examples/test_shipped.py)."""
+    from roughcontact.examples.punch_geometry import _first_size_ratio
+
+    q = _first_size_ratio(length, n, first) ** (1.0 / (n - 1))
+    assert sum(first * q**i for i in range(n)) == pytest.approx(length, rel=1e-13)
+    roots = np.roots(np.r_[np.full(n - 1, first), first - length])
+    assert q == pytest.approx(max(r.real for r in roots if abs(r.imag) < 1e-9 and r.real > 0), rel=1e-12)

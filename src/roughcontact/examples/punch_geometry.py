@@ -63,10 +63,22 @@ def _first_size_ratio(length: float, n: int, first: float) -> float:
     ``first`` [mm]; 1 (uniform) when n elements of that size already fill the length."""
     if n == 1 or n * first >= length:
         return 1.0
-    # first·(1 + q + … + q^(n−1)) = length: one sign change, so exactly one positive root (> 1)
-    roots = np.roots(np.r_[np.full(n - 1, first), first - length])
-    q = float(max(r.real for r in roots if abs(r.imag) < 1e-9 and r.real > 0))
-    return q ** (n - 1)
+    # first·(1 + q + … + q^(n−1)) = length has one root q > 1 (the sum grows with q), found by
+    # bisection in plain floats: the eigenvalues of np.roots come from LAPACK, whose last bits
+    # differ between BLAS builds and processors, and moved the shipped decks' nodes by ulps
+    def excess(q: float) -> float:
+        total = 0.0
+        for _ in range(n):  # Horner: 1 + q(1 + q(…))
+            total = total * q + 1.0
+        return first * total - length
+
+    lo, hi = 1.0, length / first  # excess(1) = n·first − length < 0 <= excess(length/first)
+    while True:
+        mid = 0.5 * (lo + hi)
+        if not lo < mid < hi:
+            break
+        lo, hi = (mid, hi) if excess(mid) < 0.0 else (lo, mid)
+    return hi ** (n - 1)
 
 
 @dataclass(frozen=True)
