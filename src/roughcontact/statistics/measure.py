@@ -552,6 +552,8 @@ def _noise_floor(z_measured, residual, dx, dy, theta, estimator, order, values) 
     if flat:
         candidates.append((tail, "a white floor in the spectrum's tail (instrument noise and quantisation)"))
     variance, source = max(candidates, key=lambda t: t[0]) if candidates else (0.0, "none detected")
+    if tail is None:  # dropouts: the periodogram needs a complete map
+        source += "; the spectrum's tail not read (the map has missing points; --fill harmonic reads it)"
     parts = white_noise_moments(variance, dx, dy, theta, estimator=estimator, order=order, shape=residual.shape)
     return {"height_step": delta, "tail_variance": tail, "tail_flat": flat, "variance": variance,
             "source": source, "contribution": parts,
