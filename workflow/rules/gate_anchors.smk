@@ -88,6 +88,34 @@ def published_csv_jobs():
     for name in NUMERICS_SCENES:
         jobs[f"paper_figures/{name}.csv"] = {
             "kind": "numerics", "data": [f"results/numerics/{name}/point-{i}.nc" for i in range(len(SCENES[name]["points"]))]}
+    # the FE tables and figures (workflow/rules/fe.smk: the same runs and parameters as their rules)
+    paper = {"paper": "config/paper_values.yaml", "expected": "config/expected_verdicts.yaml"}
+    jobs["paper_figures/table4.csv"] = {
+        "kind": "fe_table4", "runs": {n: FE_BEAM_RUNS[n] for n in FE_BEAM_MAIN}, "paths": fe_beam_paths(FE_BEAM_MAIN),
+        "cfg": FE_BEAM, "inputs": fe_beam_dirs(FE_BEAM_MAIN), **paper}
+    fig13 = [n for n in FE_BEAM_MAIN if n.startswith("cubic-") and FE_BEAM_RUNS[n].law == "elastic"]
+    jobs["paper_figures/fig13.csv"] = {"kind": "fe_fig13", "runs": {n: FE_BEAM_RUNS[n] for n in fig13},
+                                       "paths": fe_beam_paths(fig13), "inputs": fe_beam_dirs(fig13),
+                                       "paper": "config/paper_values.yaml"}
+    jobs["paper_figures/fe_beam_study.csv"] = {"kind": "fe_beam_study", "runs": FE_BEAM_RUNS,
+                                               "paths": fe_beam_paths(FE_BEAM_RUNS), "inputs": fe_beam_dirs(FE_BEAM_RUNS)}
+    punch = {"runs": FE_PUNCH_RUNS, "paths": fe_punch_paths(FE_PUNCH_RUNS), "cfg": FE_PUNCH,
+             "inputs": [f"results/fe/punch/{g}" for g in FE_PUNCH_GROUPS], **paper}
+    jobs["paper_figures/table5.csv"] = {"kind": "fe_table5", "part": "table5", **punch}
+    jobs["paper_figures/fe_punch_readings.csv"] = {"kind": "fe_table5", "part": "readings", **punch}
+    for fig, family in (("fig18", "quadratic"), ("fig19", "cubic")):
+        jobs[f"paper_figures/{fig}.csv"] = {
+            "kind": "fe_punch_slips", "family": family, "readings": ["main", FE_PUNCH["sensitivity"]["reading"]],
+            "paths": fe_punch_paths(FE_PUNCH_RUNS),
+            "inputs": [f"results/fe/punch/{g}" for g in FE_PUNCH_GROUPS if not g.split("-", 1)[1].startswith("sens-")]}
+    # the element drawings (the engine's own element definitions) and Figs 1-2 (from the configuration)
+    for name, (element, _) in DRAWINGS.items():
+        jobs[f"paper_figures/{name}.csv"] = {"kind": "drawing", "element": element}
+    for name in GEOMETRY_FIGURES:
+        jobs[f"paper_figures/{name}.csv"] = {
+            "kind": "geometry", "name": name, "cfg": config["geometry_figures"][name],
+            "surface": dict(config["surfaces"][config["geometry_figures"][name]["surface"]]),
+            "length": config["units"]["length"]}
     return jobs
 
 
@@ -97,7 +125,7 @@ PUBLISHED_CSV = published_csv_jobs()
 def _published_csv_inputs():
     files = set(PUBLISHED_CSV)
     for job in PUBLISHED_CSV.values():
-        for key in ("production", "reference", "data"):
+        for key in ("production", "reference", "data", "inputs"):
             value = job.get(key, [])
             files.update([value] if isinstance(value, str) else value)
         files.update(job[k] for k in ("paper", "expected") if k in job)
@@ -108,7 +136,9 @@ rule published_csv:
     """Every published CSV re-derived from the files it was written from, compared cell by cell."""
     input:
         files=_published_csv_inputs(),
-        writers=["workflow/scripts/table.py", "workflow/scripts/figure.py", "workflow/scripts/numerics_report.py"],
+        writers=[f"workflow/scripts/{w}.py" for w in ("table", "figure", "numerics_report", "fe_table4", "fe_table5",
+                                                      "fe_fig13", "fe_beam_study", "fe_punch_slips", "drawing",
+                                                      "geometry_figure")],
         expected="config/expected_verdicts.yaml",
         code=GATE_ANCHOR_SOURCES,
     output:

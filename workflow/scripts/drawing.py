@@ -7,18 +7,28 @@ from roughcontact.fe.interface_element import INTERFACES
 from roughcontact.paper import drawings, plots, report
 
 
+def _element(element_name):
+    if element_name in INTERFACES:
+        return INTERFACES[element_name]
+    if element_name in ELEMENTS:
+        return ELEMENTS[element_name]
+    raise ValueError(f"unknown element {element_name!r} (have {sorted(ELEMENTS) + sorted(INTERFACES)})")
+
+
+def csv_text(element_name):
+    """The node table of the element named ``element_name`` as CSV (what run writes)."""
+    return report.render_rows_csv(drawings.node_table(_element(element_name)),
+                                  units={"xi": "1", "eta": "1", "zeta": "1"})  # natural coordinates
+
+
 def draw(element_name, title):
     """(Figure, CSV text) of the element or interface element named ``element_name``."""
+    element = _element(element_name)
     if element_name in INTERFACES:
-        element = INTERFACES[element_name]
         fig = drawings.interface_figure(element, title=title)
-    elif element_name in ELEMENTS:
-        element = ELEMENTS[element_name]
-        fig = drawings.element_figure(element, title=title)
     else:
-        raise ValueError(f"unknown element {element_name!r} (have {sorted(ELEMENTS) + sorted(INTERFACES)})")
-    return fig, report.render_rows_csv(drawings.node_table(element),
-                                  units={"xi": "1", "eta": "1", "zeta": "1"})  # natural coordinates
+        fig = drawings.element_figure(element, title=title)
+    return fig, csv_text(element_name)
 
 
 def run(element_name, title, out, log):

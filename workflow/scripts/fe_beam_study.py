@@ -9,6 +9,15 @@ from roughcontact import io
 from roughcontact.paper import fe_beam, report, verify
 
 
+UNITS = {"E_star": "N/mm^2", "mu": "1", "seconds": "s"}
+
+
+def csv_text(paths, runs):
+    """paper_figures/fe_beam_study.csv from the runs (what run writes)."""
+    attrs = {name: io.read_netcdf(path).attrs for name, path in paths.items()}
+    return report.render_rows_csv(fe_beam.study_rows(attrs, runs), units=UNITS)
+
+
 def run(paths, runs, cfg, expected, out, log):
     with io.log_to(log) as logger:
         data = {name: io.read_netcdf(path) for name, path in paths.items()}
@@ -26,7 +35,7 @@ def run(paths, runs, cfg, expected, out, log):
             logger.info("%s: %s (%s) %s", c.id, c.verdict, c.status, c.detail)
         shown = report.shown_provenance(io.read_provenance(next(iter(data.values()))))
         io.write_text(out["md"], fe_beam.render_study_markdown(rows, checks, shown))
-        io.write_text(out["csv"], report.render_rows_csv(rows, units={"E_star": "N/mm^2", "mu": "1", "seconds": "s"}))
+        io.write_text(out["csv"], report.render_rows_csv(rows, units=UNITS))
         io.write_text(out["checks"], verify.checks_to_csv(checks))
 
 

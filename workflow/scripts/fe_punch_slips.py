@@ -5,6 +5,15 @@ from roughcontact import io
 from roughcontact.paper import fe_punch, plots, report
 
 
+def csv_text(family, readings, paths):
+    """paper_figures/fig18.csv or fig19.csv from the runs (what run writes)."""
+    rows = []
+    for reading in readings:
+        for case in "abc":
+            rows += fe_punch.slip_rows(io.read_netcdf(paths[f"{family}-{reading}-{case}"]), reading=reading, case=case)
+    return report.render_rows_csv(rows, units=fe_punch.SLIP_ROW_UNITS)
+
+
 def run(family, readings, paths, out, log):
     with io.log_to(log):
         panels, rows = {}, []
