@@ -21,7 +21,7 @@ TESTS = Path(__file__).resolve().parent
 #: (statistics and asperity share the bottom: asperity's plasticity index reads the surface
 #: statistics; nothing in statistics reads an asperity.)
 LAYERS = [
-    {"validation", "files"},
+    {"validation", "files", "limits", "write_errors", "orphan_jobs"},
     {"statistics"},
     {"readers"},
     {"asperity"},

@@ -216,16 +216,11 @@ def test_check_count_returns_an_int_and_accepts_a_huge_int_without_float_overflo
         limits.check_count(int("1" * 40), "cells", "n")
 
 
-@pytest.mark.xfail(raises=OverflowError, strict=True,
-                   reason="limits.check_count calls math.isfinite on an int beyond a double (issue 29, report C: "
-                          "fix suggested to limits.py's owner); strict: passes once fixed, then drop this marker")
 def test_check_count_of_an_int_beyond_a_double_is_one_line():
     """A deck may declare 10^400 ids: the limit's message, not OverflowError."""
     with pytest.raises(limits.InputLimitError, match=r"^n: an integer of 401 digits exceed the limit"):
         limits.check_count(10 ** 400, "cells", "n")
 
 
-@pytest.mark.xfail(strict=True, reason="limits.describe keeps limit + 1 characters of a long string (issue 29, "
-                                       "report C); strict: passes once fixed, then drop this marker")
 def test_describe_keeps_exactly_limit_characters():
     assert limits.describe("x" * 10_000) == "'" + "x" * 60 + "…'"

@@ -51,8 +51,6 @@ MESH_RTOL = 0.01
 #: default). A local stand-in for a limit "fe_dofs" of roughcontact.limits.LIMITS (issue 29:
 #: ``--n-x 100000`` went on to build a model of ~3·10⁷ unknowns); 2·10⁶ unknowns of the beam's
 #: strip take minutes and a few GiB to solve.
-MAX_FE_DOFS = ("ROUGHCONTACT_MAX_FE_DOFS", 2_000_000)
-
 
 def add_commands(sub, parents) -> None:
     fe = sub.add_parser("fe", help="finite-element contact: your deck, or the examples of section 9",
@@ -220,25 +218,15 @@ def _check_increments(args) -> None:
 
 
 def _check_beam_size(args) -> None:
-    """Refuse a beam model beyond :data:`MAX_FE_DOFS` before it is built (one line naming the
-    options, the limit and how to raise it)."""
-    import os
+    """Refuse a beam model beyond the limit "fe_dofs" (roughcontact.limits) before it is built
+    (one line naming the options, the limit and how to raise it)."""
+    from ..limits import check_count
 
-    var, default = MAX_FE_DOFS
-    text = os.environ.get(var, "").strip()
-    try:
-        limit = float(text) if text else default
-    except ValueError:
-        limit = math.nan
-    if not (math.isfinite(limit) and limit > 0):
-        raise CLIError(f"{var}={describe(text)}: must be a positive number (the unknowns of one finite-element model)")
     for name in ("n_x", "n_z"):
         if getattr(args, name) < 1:
             raise CLIError(f"--{name.replace('_', '-')} must be a positive integer, got {getattr(args, name)}")
     dofs = _beam_dofs(args.n_x, args.n_z, args.elements)
-    if dofs > limit:
-        raise CLIError(f"--n-x {args.n_x} --n-z {args.n_z}: a model of up to {dofs:.3g} unknowns exceeds the limit "
-                       f"of {int(limit)} (the unknowns of one finite-element model; set {var} to raise it)")
+    check_count(float(dofs), "fe_dofs", f"--n-x {args.n_x} --n-z {args.n_z}: the model's unknowns (at most)")
 
 
 def _beam_moments(args) -> dict[str, float]:

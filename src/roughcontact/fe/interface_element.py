@@ -73,7 +73,7 @@ def face_frame(face: Element, x_face: np.ndarray, xi: np.ndarray, lay=(1.0, 0.0,
     t1 = lay - np.einsum("cpk,k->cp", n, lay)[..., None] * n
     norm = np.linalg.norm(t1, axis=-1)
     if np.any(norm < 1e-8):
-        raise ValueError(f"the lay direction {tuple(lay)} is normal to an interface face")
+        raise ValueError(f"the lay direction {describe(lay.tolist())} is normal to an interface face")
     t1 /= norm[..., None]
     t2 = np.cross(n, t1)
     return np.stack([t1, t2, n], axis=-2), dA
