@@ -294,3 +294,14 @@ def test_deck_values_in_messages_are_described_briefly(write_deck):
     err = str(error(path := write_deck(text, "kw.inp")))
     assert err == (f"{path}:{line_of(text, 'FOOFOO')}: unsupported keyword *{limits.describe('FOO' * 100)} "
                    "(docs/own-model.md lists the subset)")
+
+
+def test_the_element_family_is_described_without_a_numpy_repr(write_deck):
+    import numpy as np
+
+    from roughcontact.fe.deck_mesh import deck_mesh
+
+    d = read_deck(write_deck(minimal()))
+    with pytest.raises(ValueError) as err:
+        deck_mesh(d, np.str_("cubicx"))  # a family read from an array, e.g. a config table
+    assert str(err.value) == "family must be one of quadratic, cubic, got 'cubicx'"

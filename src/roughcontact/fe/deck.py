@@ -381,7 +381,7 @@ class _Reader:
         kw.flag("SMALL SLIDING")
         if name not in self.interactions:
             raise DeckError(kw.where, f"*CONTACT PAIR: interaction {name} is not defined (*SURFACE INTERACTION)")
-        self.notes.append(f"{kw.where}: *CONTACT PAIR, TYPE={kind}: conforming faces joined by interface elements "
+        self.notes.append(f"{kw.where}: *CONTACT PAIR, TYPE={shown(kind)}: conforming faces joined by interface elements "
                           "whatever the type")
         for line in kw.data:
             if len(line.fields) != 2:

@@ -36,6 +36,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..limits import describe
 from .deck import Deck, DeckError
 from .element import HEX20, HEX21, HEX28, Element
 from .interface_element import INTERFACE18, INTERFACE32
@@ -180,7 +181,7 @@ def _contact_faces(deck: Deck) -> dict[int, tuple[int, int]]:
 def deck_mesh(deck: Deck, family: str = "quadratic", rtol: float = DEFAULT_RTOL) -> DeckMesh:
     """The engine's mesh of ``deck`` (module docstring)."""
     if family not in FAMILIES:
-        raise ValueError(f"family must be one of {', '.join(FAMILIES)}, got {family!r}")
+        raise ValueError(f"family must be one of {', '.join(FAMILIES)}, got {describe(family)}")
     if not deck.contact_pairs:
         raise DeckError(deck.path, "the deck has no *CONTACT PAIR: nothing for the interface law to act on")
     _check_jacobians(deck)

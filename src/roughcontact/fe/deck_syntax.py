@@ -153,25 +153,15 @@ def _split(text: str) -> list[str]:
     return [f.strip(_BLANKS) for f in text.split(",")]
 
 
-def _lines(text: str):
-    """(line number, line) of ``text`` as CalculiX reads them (module docstring): split at LF
-    only, a CR before it dropped."""
-    start, n = 0, 0
-    while start < len(text):
-        end = text.find("\n", start)
-        end = len(text) if end < 0 else end
-        n += 1
-        yield n, text[start:end - 1] if end > start and text[end - 1] == "\r" else text[start:end]
-        start = end + 1
-
-
 def _significant(path: Path, text: str, outside: bool, via: str):
     """(text without surrounding blanks, Where) of the lines of one file that are neither blank
     nor comments; DeckError on a control character or an overlong line."""
     if text.startswith("\ufeff"):
         raise DeckError(_where(path, 1, outside, via), "the file starts with a byte-order mark (U+FEFF), which "
                         "CalculiX reads as part of the first line: save the file as UTF-8 without BOM", quotes=False)
-    for n, raw in _lines(text):
+    for n, raw in enumerate(text.split("\n"), start=1):  # LF only: not str.splitlines (module docstring)
+        if raw.endswith("\r"):  # CR LF
+            raw = raw[:-1]
         if len(raw) > MAX_LINE_BYTES // 4 and len(raw.encode("utf-8", "surrogatepass")) > MAX_LINE_BYTES:
             raise DeckError(_where(path, n, outside, via), f"a line of {len(raw.encode('utf-8', 'surrogatepass'))} "
                             f"bytes: CalculiX reads at most {MAX_LINE_BYTES} bytes per line and the rest as a line "
@@ -179,7 +169,7 @@ def _significant(path: Path, text: str, outside: bool, via: str):
         line = raw.strip(_BLANKS)
         if not line or line.startswith("**"):
             continue
-        where = _where(path, n, outside, via)
+        where = _where(path, n, outside, via) if outside else f"{path}:{n}"  # a plain str: most lines
         bad = _CONTROL.search(line)
         if bad:
             raise DeckError(where, f"a control character (U+{ord(bad.group()):04X}) in the line, outside a comment "
