@@ -28,3 +28,17 @@ def test_console_script_and_module_use_the_entry_point():
     r = subprocess.run([sys.executable, "-m", "roughcontact", "--version"], capture_output=True, text=True,
                        timeout=120)
     assert r.returncode == 0 and r.stdout.strip() == f"roughcontact {__version__}"
+
+
+def test_ctrl_c_in_any_command_is_one_line_and_exit_130(monkeypatch, capsys):
+    """Issue 29: Ctrl-C printed a traceback (only `fe run` caught it)."""
+    from roughcontact.statistics.surface import SpectralMoments
+
+    def interrupted(self):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(SpectralMoments, "summary", interrupted)
+    code = cli.main(["surface", "--m00", "1", "--m20", "1e-4", "--m02", "1e-3", "--m40", "1e-6", "--m04", "1e-4"])
+    out, err = capsys.readouterr()
+    assert code == cli.EXIT_INTERRUPTED == 130
+    assert out == "" and err == "roughcontact: error: interrupted\n"

@@ -311,6 +311,8 @@ def _check_finite(payload: Any, path: str = "") -> None:
 #: writer killed by SIGPIPE (``seq 1 100000 | head -1`` under ``set -o pipefail``), so a script
 #: sees that the output was cut off, as for any other Unix tool
 EXIT_BROKEN_PIPE = 141
+#: the exit code of a command interrupted by Ctrl-C: 128 + SIGINT, as a shell reports it
+EXIT_INTERRUPTED = 130
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -372,6 +374,9 @@ def _main(argv: Sequence[str] | None) -> int:
     except CLIError as exc:
         print(f"{PROG}: error: {_one_line(str(exc))}", file=sys.stderr)
         return exc.code
+    except KeyboardInterrupt:  # Ctrl-C: one line, no traceback (files are written atomically)
+        print(f"{PROG}: error: interrupted", file=sys.stderr)
+        return EXIT_INTERRUPTED
     print(text)
     return 0
 

@@ -33,7 +33,7 @@ from typing import Any
 import numpy as np
 
 from ..limits import describe
-from . import CLIError, _MOMENTS, _real, output_file, writing
+from . import EXIT_INTERRUPTED, CLIError, _MOMENTS, _real, output_file, writing
 
 __all__ = ["add_commands"]
 
@@ -112,10 +112,6 @@ def _add_run(sub, parents) -> None:
                    help="a ParaView series: OUT.pvd and OUT/<increment>.vtu, OUT/<increment>_interface.vtu")
     p.add_argument("--quiet", action="store_true", help="no progress lines on stderr")
     p.set_defaults(func=_run_deck, render=_render_deck)
-
-
-#: the exit code of a command interrupted by Ctrl-C: 128 + SIGINT, as a shell reports it
-EXIT_INTERRUPTED = 130
 
 
 def _run_deck(args) -> dict[str, Any]:
