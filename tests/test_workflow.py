@@ -53,6 +53,10 @@ def test_config_validates_against_schema():
         (lambda c: c["scenes"]["fig4"].update(hertz=["approximate"]), "approximate"),
         (lambda c: c.update(reference_dps="twelve"), "twelve"),
         (lambda c: c["scenes"]["fig3"].pop("s"), "'s'"),
+        # the gate's anchors (issue 29): a tolerance states why, a sample names its s
+        (lambda c: c["gate_anchors"]["curves"]["tolerance"].pop("why"), "why"),
+        (lambda c: c["gate_anchors"]["curves"]["samples"]["fig5"][0].pop("s"), "'s'"),
+        (lambda c: c["fe_anchors"]["punch"]["tolerances"].pop("energy"), "energy"),
     ],
 )
 def test_schema_rejects_bad_configs(mutate, message):
@@ -249,6 +253,9 @@ def _clone_with_tiny_sweep(tmp_path):
     clone = fresh_clone(tmp_path)
     cfg = yaml.safe_load((clone / "config" / "config.yaml").read_text())
     cfg["sweeps"] = {"tiny": TINY_SWEEP}
+    # the gate samples the configured sweep (gate_anchors.curves.samples): sample the tiny one
+    cfg["gate_anchors"]["curves"]["samples"].pop("m00_psi")
+    cfg["gate_anchors"]["curves"]["samples"]["tiny"] = [{"m00": 0.3125, "psi": 0.5, "s": 1.0}]
     (clone / "config" / "config.yaml").write_text(yaml.safe_dump(cfg, sort_keys=False))
     return clone
 
