@@ -305,3 +305,18 @@ def test_the_element_family_is_described_without_a_numpy_repr(write_deck):
     with pytest.raises(ValueError) as err:
         deck_mesh(d, np.str_("cubicx"))  # a family read from an array, e.g. a config table
     assert str(err.value) == "family must be one of quadratic, cubic, got 'cubicx'"
+
+
+def test_a_fifo_or_a_folder_as_deck_or_include_is_one_line(tmp_path):
+    """Never opened (a FIFO blocks, /dev/zero never ends): limits.check_file first."""
+    os.mkfifo(tmp_path / "pipe.inp")
+    assert str(error(tmp_path / "pipe.inp")) == (f"{tmp_path / 'pipe.inp'}: not a regular file (a pipe or a device "
+                                                 "is not read)")
+    assert str(error(tmp_path)) == f"{tmp_path}: is a directory, not a file"
+    (tmp_path / "m.inp").write_text("*NODE\n*INCLUDE, INPUT=pipe.inp\n")
+    assert str(error(tmp_path / "m.inp")) == (f"{tmp_path / 'm.inp'}:2: *INCLUDE file {tmp_path / 'pipe.inp'}: not a "
+                                              "regular file (a pipe or a device is not read)")
+    (tmp_path / "latin1.inp").write_bytes(b"** caf\xe9\n")
+    (tmp_path / "m.inp").write_text("*NODE\n*INCLUDE, INPUT=latin1.inp\n")
+    assert str(error(tmp_path / "m.inp")) == (f"{tmp_path / 'm.inp'}:2: *INCLUDE file {tmp_path / 'latin1.inp'}: not "
+                                              "utf-8 text (byte 6: b'\\xe9')")

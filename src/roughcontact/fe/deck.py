@@ -9,10 +9,12 @@ upper-cased, as both codes do):
 
 =========================  ==================================================================
 ``*HEADING``               the title
-``*NODE``                  ``NSET=``; id, x[, y[, z]] (missing coordinates are 0)
+``*NODE``                  ``NSET=``; id (1 … 2⁶³ − 1, the engine's int64), x[, y[, z]] (missing
+                           coordinates are 0; reals as Fortran reads them, E or D exponent)
 ``*ELEMENT``               ``TYPE=C3D20`` or ``C3D20R`` (both the 20-node serendipity hexahedron,
                            integrated fully here), ``ELSET=``; connectivity over several lines
-``*NSET``, ``*ELSET``      ids or names of sets; ``GENERATE`` (first, last[, step]);
+``*NSET``, ``*ELSET``      ids or names of sets; ``GENERATE`` (first, last[, step]; at most
+                           ``ROUGHCONTACT_MAX_DECK_ITEMS`` ids a line, checked before they are made);
                            ``*NSET, ELSET=``: the nodes of those elements
 ``*SURFACE``               ``NAME=``, ``TYPE=ELEMENT``; element or elset, ``S1`` … ``S6``
 ``*MATERIAL``/``*ELASTIC`` ``NAME=``; E, ν (isotropic)
@@ -22,7 +24,10 @@ upper-cased, as both codes do):
 ``*CONTACT PAIR``          ``INTERACTION=``; slave surface, master surface
 ``*BOUNDARY``              node or nset, first dof[, last dof[, value]], or node/nset, XSYMM,
                            YSYMM, ZSYMM, PINNED, ENCASTRE; in the model (every step) or a step
-``*STEP`` … ``*END STEP``  with ``*STATIC``: initial increment, period (the increments)
+``*STEP`` … ``*END STEP``  with ``*STATIC``: initial increment (positive, normal, at most the
+                           period, as ccx requires), period (the increments); ``INC=`` and the
+                           minimum and maximum increments ignored with a note each;
+                           ``NLGEOM`` (bare: YES) an error but ``NLGEOM=NO``
 ``*CLOAD``                 node or nset, dof, force
 ``*DLOAD``                 element or elset, P1 … P6, pressure on that face
 =========================  ==================================================================

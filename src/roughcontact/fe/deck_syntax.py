@@ -196,12 +196,12 @@ def _logical_lines(path: Path, text: str | None = None):
     recursion: the nesting is bounded by a limit, not by Python's stack), continuations of
     keyword lines joined (data continuations are joined by :func:`parse_blocks`)."""
     root = path.parent
+    total, limit = len(text or ""), limits.max_input_bytes()  # bytes read so far (a text given: its characters)
     if text is None:
         try:
-            text = limits.read_text(path, "deck")
+            total, text = limits.check_file(path, "deck"), limits.read_text(path, "deck")
         except ValueError as exc:  # "deck PATH: why" as "PATH: why"
             raise type(_limited(path, exc))(str(path), str(exc).removeprefix(f"deck {path}: "), quotes=False) from None
-    total, limit = len(text), limits.max_input_bytes()
     stack = [_File(path, _significant(path, text, False, ""))]
     while stack:
         f = stack[-1]
@@ -237,16 +237,19 @@ def _logical_lines(path: Path, text: str | None = None):
         if not inc.exists():
             raise DeckError(where, f"*INCLUDE: no file {inc}")
         check_count(len(stack), "include_depth", where, "*INCLUDE nesting")
-        try:
+        try:  # its size first: a file included many times over is counted every time, before it is read
+            total += limits.check_file(inc, "*INCLUDE file")
+            if total > limit:
+                var = limits.LIMITS["input_mb"][0]
+                raise DeckLimitError(where, f"*INCLUDE file {inc}: the deck with its *INCLUDE files exceeds the limit "
+                                            f"of {limit / 1048576:.0f} MB ({limits.LIMITS['input_mb'][2]}, counted over "
+                                            f"the deck and every file it includes; set {var} to raise it, in MB)",
+                                     quotes=False)
             inc_text = limits.read_text(inc, "*INCLUDE file")
-        except ValueError as exc:  # no such file, not a regular file, too large, not UTF-8
+        except DeckError:
+            raise
+        except ValueError as exc:  # not a regular file, too large, not UTF-8
             raise _limited(where, exc) from None
-        total += len(inc_text)
-        if total > limit:
-            var = limits.LIMITS["input_mb"][0]
-            raise DeckLimitError(where, f"*INCLUDE file {inc}: the deck with its *INCLUDE files exceeds the limit of "
-                                        f"{limit / 1048576:.0f} MB ({limits.LIMITS['input_mb'][2]}, counted over the "
-                                        f"deck and every file it includes; set {var} to raise it, in MB)", quotes=False)
         outside = not inc.is_relative_to(root)
         stack.append(_File(inc, _significant(inc, inc_text, outside, str(where))))
 
