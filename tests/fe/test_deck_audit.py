@@ -128,12 +128,13 @@ def test_ignored_step_values_each_get_a_note(write_deck):
 
 def test_a_second_static_data_line_is_refused(write_deck):
     text = minimal(steps="*STEP\n*STATIC\n0.5, 1.\n0.1, 1.\n*END STEP\n")
-    assert str(error(path := write_deck(text))).startswith(f"{path}:{line_of(text, '0.1, 1.')}: *STATIC takes one data line")
+    said = str(error(path := write_deck(text)))
+    assert said.startswith(f"{path}:{line_of(text, '0.1, 1.')}: *STATIC takes one data line")
 
 
 @pytest.mark.parametrize("data, message", [
-    ("1e-320, 1e300", "*STATIC: the initial increment 9.99989e-321 is subnormal: it must be positive and normal (at least "
-                      f"{sys.float_info.min:g}) and at most the step period 1e+300"),
+    ("1e-320, 1e300", "*STATIC: the initial increment 9.99989e-321 is subnormal: it must be positive and normal "
+                      f"(at least {sys.float_info.min:g}) and at most the step period 1e+300"),
     ("1e-300, 1e300", "*STATIC: inf increments (period 1e+300 / initial increment 1e-300) exceed 100000"),
     ("2., 1.", "*STATIC: the initial increment 2 exceeds the step period 1 (it must be positive, normal and at most "
                "the period)"),  # as ccx: "initial increment size exceeds step size"
@@ -193,9 +194,9 @@ def test_generate_is_bounded_before_the_range_is_built(write_deck, monkeypatch):
     text = minimal("*NSET, NSET=BIG, GENERATE\n1, 2000000000\n")
     err = error(path := write_deck(text))
     assert isinstance(err, limits.InputLimitError)
-    assert str(err) == (f"{path}:{line_of(text, '2000000000')}: *NSET, GENERATE 1, 2000000000, 1: the ids: 2000000000 "
-                        "exceed the limit of 20000000 (the ids a deck line may declare; set ROUGHCONTACT_MAX_DECK_ITEMS "
-                        "to raise it)")
+    assert str(err) == (f"{path}:{line_of(text, '2000000000')}: *NSET, GENERATE 1, 2000000000, 1: the ids: "
+                        "2000000000 exceed the limit of 20000000 (the ids a deck line may declare; set "
+                        "ROUGHCONTACT_MAX_DECK_ITEMS to raise it)")
     # with the limit raised the range is still never built: the first id not defined is found lazily
     monkeypatch.setenv("ROUGHCONTACT_MAX_DECK_ITEMS", "3e9")
     t0 = time.perf_counter()

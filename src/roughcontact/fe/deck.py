@@ -279,7 +279,8 @@ class _Reader:
                     raise DeckError(start, f"{etype} element {shown(fields[0])} with {before - 1} nodes, and the next "
                                            f"line ({line.where}) has {len(line.fields)} fields, more than the "
                                            f"{n + 1 - before} missing ({etype} needs {n})")
-                raise DeckError(start, f"{etype} element {shown(fields[0])} with {len(fields) - 1} nodes ({etype} needs {n})")
+                raise DeckError(start, f"{etype} element {shown(fields[0])} with {len(fields) - 1} nodes "
+                                       f"({etype} needs {n})")
             eid = _int(fields[0], start, "an element id")
             if eid in self.elements:
                 raise DeckError(start, f"element {eid} is defined twice")
@@ -294,7 +295,8 @@ class _Reader:
             ids.append(eid)
             fields = []
         if fields:
-            raise DeckError(start, f"{etype} element {shown(fields[0])} with {len(fields) - 1} nodes ({etype} needs {n})")
+            raise DeckError(start, f"{etype} element {shown(fields[0])} with {len(fields) - 1} nodes "
+                                   f"({etype} needs {n})")
         if elset:
             self.elsets.setdefault(elset.strip('"').upper(), set()).update(ids)
 
@@ -386,7 +388,8 @@ class _Reader:
         kw.flag("SMALL SLIDING")
         if name not in self.interactions:
             raise DeckError(kw.where, f"*CONTACT PAIR: interaction {name} is not defined (*SURFACE INTERACTION)")
-        self.notes.append(f"{kw.where}: *CONTACT PAIR, TYPE={shown(kind)}: conforming faces joined by interface elements "
+        self.notes.append(f"{kw.where}: *CONTACT PAIR, TYPE={shown(kind)}: conforming faces joined by interface "
+                          "elements "
                           "whatever the type")
         for line in kw.data:
             if len(line.fields) != 2:

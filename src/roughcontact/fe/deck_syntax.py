@@ -241,10 +241,10 @@ def _logical_lines(path: Path, text: str | None = None):
             total += limits.check_file(inc, "*INCLUDE file")
             if total > limit:
                 var = limits.LIMITS["input_mb"][0]
+                what = limits.LIMITS["input_mb"][2]
                 raise DeckLimitError(where, f"*INCLUDE file {inc}: the deck with its *INCLUDE files exceeds the limit "
-                                            f"of {limit / 1048576:.0f} MB ({limits.LIMITS['input_mb'][2]}, counted over "
-                                            f"the deck and every file it includes; set {var} to raise it, in MB)",
-                                     quotes=False)
+                                            f"of {limit / 1048576:.0f} MB ({what}, counted over the deck and every "
+                                            f"file it includes; set {var} to raise it, in MB)", quotes=False)
             inc_text = limits.read_text(inc, "*INCLUDE file")
         except DeckError:
             raise
