@@ -298,3 +298,33 @@ def test_a_frictionless_run_has_no_energy_checks_and_a_run_without_k_T_is_red():
     checks = fe_anchors.punch_energy_checks({"q-a": _Run("incremental-end")}, {"q-a": ds.drop_vars(["k_Tx", "k_Ty"])},
                                             ENERGY)
     assert [c.verdict for c in checks] == [NOT_REPRODUCED] * 2 and "re-run it" in checks[0].detail
+
+
+# ---------------------------------------------------------------------------------------------
+# the declared counts (config/expected_verdicts.yaml expected_checks)
+# ---------------------------------------------------------------------------------------------
+EXPECTED = yaml.safe_load((ROOT / "config" / "expected_verdicts.yaml").read_text())["expected_checks"]
+
+
+def test_the_declared_counts_are_the_configured_samples_csvs_and_punch_runs():
+    samples = CONFIG["gate_anchors"]["curves"]["samples"]
+    n = 0
+    for name, spec in samples.items():
+        kind = "sweep" if name in CONFIG["sweeps"] else CONFIG["scenes"][name]["kind"]
+        cfg = CONFIG["sweeps"][name] if kind == "sweep" else CONFIG["scenes"][name]
+        n += sum(len(p.variables) for p in ga.sample_points(kind, name, cfg, spec, CONFIG["surfaces"]))
+    assert EXPECTED["curve_anchors"] == n == 104
+    scenes = CONFIG["scenes"]
+    figures = [s for s, sc in scenes.items() if sc["kind"] in (
+        "bearing_ratio", "hertz_factors", "elastoplastic_psi", "stiffness_pressure", "stiffness_sensitivity",
+        "friction_slip_rule", "friction_hardening", "friction_cases")]
+    tables = [s for s, sc in scenes.items() if sc["kind"] in ("table", "mindlin_table")]
+    numerics = [s for s, sc in scenes.items() if sc["kind"] == "elastoplastic_numerics"]
+    fe = ["table4", "fig13", "fe_beam_study", "table5", "fe_punch_readings", "fig18", "fig19"]
+    drawings = ["fig11", "fig12", "fig16", "fig17"]
+    assert EXPECTED["published_csv"] == len(tables + figures + numerics + fe + drawings) + len(CONFIG["geometry_figures"])
+    from roughcontact.examples import runs as fe_runs
+
+    runs = {n: r for g in fe_runs.punch_groups(CONFIG["fe"]["punch"]).values() for n, r in g.items()}
+    frictional = sum(r.case != "frictionless" for r in runs.values())
+    assert EXPECTED["fe_punch_anchor"] == 6 * frictional + 2 * (len(runs) - frictional)
