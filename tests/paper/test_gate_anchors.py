@@ -328,3 +328,26 @@ def test_the_declared_counts_are_the_configured_samples_csvs_and_punch_runs():
     runs = {n: r for g in fe_runs.punch_groups(CONFIG["fe"]["punch"]).values() for n, r in g.items()}
     frictional = sum(r.case != "frictionless" for r in runs.values())
     assert EXPECTED["fe_punch_anchor"] == 6 * frictional + 2 * (len(runs) - frictional)
+
+
+def test_the_gate_names_the_cell_of_each_regression(tmp_path):
+    """The gate's message gives each regression's detail beside its id: the tampered file and its
+    cell, not only the check's name."""
+    import importlib.util
+    import json
+
+    from roughcontact.paper import verify
+
+    bad = ga.csv_cell_check("paper_figures/table3.csv", DERIVED.replace("1.4285714285714286", "1.5"), DERIVED, CSV_TOL)
+    checks = verify.apply_expectations([bad], {})
+    summary = verify.summarize(checks)
+    assert not summary["passed"] and summary["regression_ids"] == [bad.id]
+    spec = importlib.util.spec_from_file_location("verify_gate", ROOT / "workflow" / "scripts" / "verify_gate.py")
+    gate = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(gate)
+    (tmp_path / "summary.json").write_text(json.dumps(summary))
+    with pytest.raises(SystemExit, match="1 verification regression"):
+        gate.run(tmp_path / "summary.json", tmp_path / "passed", tmp_path / "gate.log")
+    log = (tmp_path / "gate.log").read_text()
+    assert ("REGRESSION numerics:published_csv/table3/cells/file=paper_figures/table3.csv: paper_figures/table3.csv "
+            "differs from its result files in 1 place(s): line 2 (table3,nu-0), column 'ours'") in log

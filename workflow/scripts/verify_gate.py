@@ -30,7 +30,8 @@ def message(summary):
               for m in coverage.get("skipped", [])]
     lines += [f"  more checks than declared in {m['scene']}: {m['found']} of {m['expected']} (update expected_checks)"
               for m in coverage.get("unexpected", [])]
-    lines += [f"  REGRESSION {i}" for i in summary["regression_ids"]]
+    details = summary.get("regression_details") or {}
+    lines += [f"  REGRESSION {i}" + (f": {details[i]}" if details.get(i) else "") for i in summary["regression_ids"]]
     lines += [f"  IMPROVED beyond expectation (update config/expected_verdicts.yaml with the reason): {i}"
               for i in summary["improved_ids"]]
     lines.append("  report: paper_figures/VERIFICATION.md")
