@@ -39,7 +39,7 @@ the window's own moments the estimator's error is the tested bias above.
 
 Noise floor: white height noise (quantisation in steps Δ: variance Δ²/12; an instrument's noise:
 a flat tail of the spectrum) adds to each moment the variance of the estimator's filter applied to
-it, in closed form (the comment before :func:`height_step`); ``noise_floor`` reports it per moment,
+it, in closed form (:mod:`.noise`); ``noise_floor`` reports it per moment,
 a warning fires above NOISE_LIMIT of a moment, and the dx-vs-2dx resolution check compares the
 moments after their noise part is taken away (the part falls by k² for slopes and k⁴ for
 curvatures at k dx), so that it speaks of the surface, not of the noise.
@@ -59,8 +59,11 @@ import numpy as np
 
 from ..limits import describe
 from ..validation import choice, positive
-from .derivatives import ORDERS, derivative_fields, first_derivative, stencil_weights
+from .derivatives import ORDERS, derivative_fields, first_derivative
 from .dropouts import FILLS, MAX_MISSING, fill_harmonic, missing_fraction
+from .form import remove_form
+from .noise import NOISE_LIMIT, height_step, noise_floor, noise_removed_ratios, white_noise_moments
+from .summits import m22_effect
 from .surface import SpectralMoments
 
 __all__ = ["ESTIMATORS", "DETRENDS", "NOISE_LIMIT", "MeasurementWarning", "MeasuredMoments", "measure_heights",
@@ -73,10 +76,6 @@ WINDOWS = ("hann", "none")
 DETRENDS = ("plane", "mean", "none", "poly2", "poly3", "poly4", "sphere")
 #: profiles (measure_profiles): a line per profile, the mean, or nothing
 PROFILE_DETRENDS = ("plane", "mean", "none")
-#: a form is fitted on at most about this many measured points (a regular subsample of larger maps:
-#: the fit's matrix of up to 15 columns then takes ≤ 130 MB on an 8192² map; measured on a 2048²
-#: map, the plane from every 4th point differs from all points' by 1.3e-4 Sq, m00 by 5e-9)
-FIT_POINTS = 2**20
 FIVE = ("m00", "m20", "m02", "m40", "m04")
 _ALL = ("m00", "m20", "m02", "m11", "m40", "m04", "m22", "m31", "m13")
 #: sampling intervals (multiples of dx, dy) at which the moments are also reported
@@ -177,9 +176,7 @@ class MeasuredMoments:
         either way): all five positive and μ = 1 − 1/α1 − 1/α2 > 0 (eq. 10), and the curvatures
         resolved (m40, m04 at dx vs 2 dx within RESOLUTION_TOL, after the estimated noise part is
         taken from both: ``noise_floor``). The neglected m22 is stated, not a condition: ``m22``
-        compares its effect with what the BEM comparison measured (contact.validity.m22_effect)."""
-        from ..contact.validity import m22_effect
-
+        compares its effect with what the BEM comparison measured (statistics.summits.m22_effect)."""
         m = self.values
         positive_ = all(m[k] > 0 for k in FIVE)
         mu = 1.0 - m["m20"] ** 2 / (m["m00"] * m["m40"]) - m["m02"] ** 2 / (m["m00"] * m["m04"]) if positive_ else None
@@ -249,97 +246,6 @@ def _heights(z, ndim) -> np.ndarray:
     if np.isinf(a).any():
         raise ValueError(f"heights must be finite or NaN (missing): {int(np.isinf(a).sum())} are infinite")
     return a
-
-
-def _coordinates(shape, dx, dy):
-    """x = j dx, y = i dy [L] of every point of a map of ``shape``."""
-    ny, nx = shape
-    return np.meshgrid(np.arange(ny) * dy, np.arange(nx) * dx, indexing="ij")[::-1]
-
-
-def _fit_points(ok):
-    """Flat indices of the measured points a form is fitted on: all of them, or on a map with
-    more than FIT_POINTS a regular subsample of about FIT_POINTS (every k-th in row order)."""
-    idx = np.flatnonzero(ok)
-    return idx[::-(-idx.size // FIT_POINTS)]
-
-
-def _poly_form(z, ok, x, y, degree):
-    """The least-squares polynomial of total degree ``degree`` in x, y over the measured points
-    (:func:`_fit_points`; coordinates centred and scaled to [-1, 1], which keeps the monomials'
-    matrix conditioned), evaluated on the whole map."""
-    u = (x - x.mean()) / max(np.ptp(x) / 2, 1e-300)
-    v = (y - y.mean()) / max(np.ptp(y) / 2, 1e-300)
-    terms = [(i, d - i) for d in range(degree + 1) for i in range(d + 1)]
-    fit = _fit_points(ok)
-    uf, vf = u.ravel()[fit], v.ravel()[fit]
-    A = np.column_stack([uf**i * vf**j for i, j in terms])
-    coef, *_ = np.linalg.lstsq(A, z.ravel()[fit], rcond=None)
-    form = np.zeros(z.shape)
-    for c, (i, j) in zip(coef, terms):
-        form += c * u**i * v**j
-    return form
-
-
-def _sphere_form(z, ok, x, y):
-    """The sphere z = z_c + σ √(R² − (x − x0)² − (y − y0)²) (σ = +1: a cap, −1: a bowl) nearest
-    to the measured heights in the least-squares sense (vertical residuals; Gauss–Newton from
-    the paraboloid z = c + a x + b y + k (x² + y²), whose R = 1/(2|k|): the sphere's small-slope
-    limit), and its parameters. A tilt is the sphere's centre off the map's; a map without
-    curvature (|k| ≈ 0, R beyond 1e6 times the map's extent) gets its plane removed instead."""
-    from scipy.optimize import least_squares
-
-    fit_at = _fit_points(ok)
-    xs, ys, zs = x.ravel()[fit_at], y.ravel()[fit_at], z.ravel()[fit_at]
-    xc, yc = xs.mean(), ys.mean()
-    extent = math.hypot(np.ptp(xs), np.ptp(ys))
-    r2 = (xs - xc) ** 2 + (ys - yc) ** 2
-    A = np.column_stack([np.ones_like(xs), xs - xc, ys - yc, r2])
-    (c, a, b, k), *_ = np.linalg.lstsq(A, zs, rcond=None)
-    if not abs(k) * 2e6 * extent > 1.0:  # R0 = 1/(2|k|) > 1e6 extent: no measurable sphere
-        plane = _poly_form(z, ok, x, y, 1)
-        return plane, {"removed": "plane", "note": f"no spherical form: the fitted radius exceeds 1e6 times the "
-                       f"map's extent ({extent:.3g}); the plane was removed"}
-    sign = -1.0 if k > 0 else 1.0  # k < 0: the heights fall away from the centre, a cap
-    R0 = 1.0 / (2.0 * abs(k))
-    x0, y0 = xc - a / (2.0 * k), yc - b / (2.0 * k)
-    z0 = c - k * ((x0 - xc) ** 2 + (y0 - yc) ** 2) - sign * R0  # apex height c' = z0 + σ R0
-
-    def residual(p):
-        root = np.sqrt(np.maximum(p[3] ** 2 - (xs - p[0]) ** 2 - (ys - p[1]) ** 2, 0.0))
-        return p[2] + sign * root - zs
-
-    fit = least_squares(residual, [x0, y0, z0, R0], x_scale=[extent, extent, R0, R0], method="lm")
-    x0, y0, z0, R = fit.x
-    reach = np.max((x[ok] - x0) ** 2 + (y[ok] - y0) ** 2)
-    if not (np.isfinite(fit.x).all() and R > 0 and R * R > reach):
-        raise ValueError(f"the fitted sphere (radius {abs(R):.4g}) does not span the map (its points reach "
-                         f"{math.sqrt(reach):.4g} from the centre): use --detrend poly2 or poly3")
-    form = z0 + sign * np.sqrt(np.maximum(R * R - (x - x0) ** 2 - (y - y0) ** 2, 0.0))
-    return form, {"removed": "sphere", "radius": float(R), "shape": "convex (a cap)" if sign > 0 else "concave (a bowl)",
-                  "centre_x": float(x0), "centre_y": float(y0)}
-
-
-def _detrend(z, dx, dy, how):
-    """(z minus its form, what was removed): the form fitted by least squares over the measured
-    points (x = j dx, y = i dy) — the mean, the plane, a polynomial of total degree N ("polyN"),
-    or a sphere (:func:`_sphere_form`); the dict says which, with the sphere's radius [L] and the
-    rms of the removed form about its mean, ``form_rms`` [L]."""
-    ok = np.isfinite(z)
-    if how == "none":
-        return z, {"removed": "nothing", "form_rms": 0.0}
-    if how == "mean":
-        return z - z[ok].mean(), {"removed": "mean", "form_rms": 0.0}
-    x, y = _coordinates(z.shape, dx, dy)
-    if how == "sphere":
-        form, info = _sphere_form(z, ok, x, y)
-    else:
-        degree = 1 if how == "plane" else int(how[4:])
-        form, info = _poly_form(z, ok, x, y, degree), {"removed": how if degree > 1 else "plane"}
-        if degree > 1:
-            info["degree"] = degree
-    info["form_rms"] = float(np.std(form[ok]))
-    return z - form, info
 
 
 def _rotated(f, theta):
@@ -437,148 +343,6 @@ def _spectral(z, dx, dy, window, theta):
     return {k: float((qa**p * qc**q * power).sum()) for k, (p, q) in powers.items()}
 
 
-# -- the noise floor ------------------------------------------------------------------------
-# White noise n of variance σ² on the heights (uncorrelated between points) adds to each moment
-# the variance of the estimator's linear filter applied to n: for a filter Σ_j w_j n_j that is
-# σ² Σ_j w_j² (the variance of a sum of uncorrelated variables). For the fd estimator's central
-# stencil w_o (o = −r … r, divided by h; :mod:`.derivatives`) and its self-convolution c = w * w
-# (z_xx = D_x D_x z), with S1 = Σ w_o², S2 = Σ c_k² and c_0 = −S1 (w is odd):
-#     Var n_x = σ² S1/dx²,  Var n_xx = σ² S2/dx⁴,  Var n_xy = Cov(n_xx, n_yy) = σ² S1²/(dx² dy²),
-#     Cov(n_x, n_y) = Cov(n_xx, n_xy) = Cov(n_yy, n_xy) = 0 (w_0 = 0),
-# and in the lay frame (c = cos θ, s = sin θ; the fields rotated as in _rotated):
-#     m20 += c² Vx + s² Vy,  m02 += s² Vx + c² Vy,
-#     m40 += c⁴ Vxx + s⁴ Vyy + 6 c² s² Vxy,  m04 += s⁴ Vxx + c⁴ Vyy + 6 c² s² Vxy,
-#     m22 += c² s² (Vxx + Vyy − 2 Vxy) + (c² − s²)² Vxy.
-# At k dx the same stencils at spacing k h: the slope parts fall by k², the curvature parts by k⁴.
-# For the periodogram (Parseval) white noise adds σ²/N to every bin: m_pq += σ² mean_k(q_a^p q_c^q)
-# over the grid's wavenumbers (the window's power is normalised out). Uniform quantisation in steps
-# Δ is such noise with σ² = Δ²/12 when the heights spread over many steps between neighbouring points
-# (Widrow's quantisation theorem: B. Widrow & I. Kollár, Quantization Noise, Cambridge 2008,
-# chapters 4–5); tests/statistics/test_noise_floor.py checks the estimate against the measured inflation.
-
-#: the noise part of a moment above this fraction of the measured moment is warned about: 10 % of
-#: m40 or m04 is 5 % on the summit density (17) and the mean summit curvature (70), both ∝ √m40, √m04,
-#: beyond their batch-means uncertainty on a 256² map (3.4–7 % for the surface of test_noise_floor.py,
-#: 12 maps) — a bias the stated uncertainty does not show; the same 10 % as RESOLUTION_TOL
-NOISE_LIMIT = 0.10
-#: the spectrum's tail: the corner |q_x|, |q_y| in (0.75, 1] of the Nyquist wavenumbers against the
-#: band (0.5, 0.75]; a white floor has equal medians there, a surface's spectrum falls (a power law
-#: C ∝ q^-3.6, Hurst 0.8, by 0.3 between the two; even C ∝ q^-2 by 0.5): a corner within TAIL_FLAT of the
-#: band is read as a floor of white noise
-TAIL_BANDS = ((0.75, 1.0), (0.5, 0.75))
-TAIL_FLAT = 0.7
-#: the noise part above this fraction of a moment: its dx-vs-2dx ratio is not judged (NaN). Where the
-#: noise part is large the estimate is within 10 % of it (m40: 0.96–1.09 of the measured inflation,
-#: test_noise_floor.py), which leaves 0.1 f/(1 − f) of the noise-free moment uncertain at a fraction
-#: f: RESOLUTION_TOL (10 %) at f = 0.5
-NOISE_DOMINATES = 0.5
-_NOISE_MOMENTS = ("m00", "m20", "m02", "m40", "m04", "m22")
-
-
-def height_step(z) -> float | None:
-    """The height resolution Δ [unit of z]: the smallest step between distinct measured heights,
-    if every step is an integer multiple of it (to 1 %: the heights lie on a lattice, as
-    instruments and vendor exports quantise them); None otherwise (steps below 1e-9 of the range,
-    the round-off of a unit conversion, do not count)."""
-    v = np.unique(np.asarray(z, dtype=float)[np.isfinite(z)])
-    if v.size < 3:
-        return None
-    steps = np.diff(v)
-    steps = steps[steps > 1e-9 * (v[-1] - v[0])]
-    if steps.size == 0:
-        return None
-    delta = float(steps.min())
-    k = steps / delta
-    return delta if np.all(np.abs(k - np.round(k)) <= 0.01) else None
-
-
-def _tail_floor(residual, dx, dy):
-    """(σ² of a white floor read from the spectrum's tail [L²], whether the tail is flat): the
-    median Hann-windowed periodogram in the corner band of TAIL_BANDS, N/ln 2 times (white noise's
-    periodogram is exponentially distributed, median = mean ln 2: Priestley 1981, Spectral
-    Analysis and Time Series, chapter 6), and whether it is within TAIL_FLAT of the inner
-    band's. (None, None) for an incomplete map."""
-    if not np.isfinite(residual).all():
-        return None, None
-    ny, nx = residual.shape
-    w = np.outer(np.hanning(ny + 2)[1:-1], np.hanning(nx + 2)[1:-1])
-    power = np.abs(np.fft.fft2((residual - residual.mean()) * w)) ** 2 / (residual.size**2 * np.mean(w**2))
-    fx = np.abs(np.fft.fftfreq(nx))[np.newaxis, :] * 2  # |q_x| / Nyquist
-    fy = np.abs(np.fft.fftfreq(ny))[:, np.newaxis] * 2
-    medians = []
-    for lo, hi in TAIL_BANDS:
-        band = (fx > lo) & (fx <= hi) & (fy > lo) & (fy <= hi)
-        medians.append(float(np.median(np.broadcast_to(power, band.shape)[band])) if band.any() else math.nan)
-    corner, inner = medians
-    variance = corner * residual.size / math.log(2.0)
-    flat = bool(inner > 0 and corner >= TAIL_FLAT * inner)
-    return variance, flat
-
-
-def white_noise_moments(variance, dx, dy, theta, *, estimator="fd", order=6, shape=None, step=1) -> dict:
-    """The part of each moment (m00, m20, m02, m40, m04, m22, in the frame at ``theta`` [rad]
-    from the map's x axis) that white height noise of ``variance`` [L²] adds, for the estimator
-    used (the closed forms in the comment above: fd stencils of ``order`` at spacing step·dx, or
-    the periodogram of a map of ``shape``)."""
-    c, s = math.cos(theta), math.sin(theta)
-    if estimator == "fd":
-        r = order // 2
-        w = stencil_weights(range(-r, r + 1))
-        S1, S2 = float(np.sum(w**2)), float(np.sum(np.convolve(w, w) ** 2))
-        hx, hy = step * dx, step * dy
-        Vx, Vy = variance * S1 / hx**2, variance * S1 / hy**2
-        Vxx, Vyy, Vxy = variance * S2 / hx**4, variance * S2 / hy**4, variance * S1**2 / (hx**2 * hy**2)
-        return {"m00": variance, "m20": c * c * Vx + s * s * Vy, "m02": s * s * Vx + c * c * Vy,
-                "m40": c**4 * Vxx + s**4 * Vyy + 6 * c * c * s * s * Vxy,
-                "m04": s**4 * Vxx + c**4 * Vyy + 6 * c * c * s * s * Vxy,
-                "m22": c * c * s * s * (Vxx + Vyy - 2 * Vxy) + (c * c - s * s) ** 2 * Vxy}
-    ny, nx = -(-shape[0] // step), -(-shape[1] // step)  # the subsampled map z[::step, ::step]
-    qx = 2 * np.pi * np.fft.fftfreq(nx, d=step * dx)[np.newaxis, :]
-    qy = 2 * np.pi * np.fft.fftfreq(ny, d=step * dy)[:, np.newaxis]
-    qa, qc = c * qx + s * qy, -s * qx + c * qy
-    powers = {"m00": (0, 0), "m20": (2, 0), "m02": (0, 2), "m40": (4, 0), "m04": (0, 4), "m22": (2, 2)}
-    return {k: float(variance * np.mean(np.broadcast_to(qa**p * qc**q, (ny, nx)))) for k, (p, q) in powers.items()}
-
-
-def _noise_floor(z_measured, residual, dx, dy, theta, estimator, order, values) -> dict:
-    """The noise floor of the moments (MeasuredMoments.noise_floor): the height step and the
-    tail's floor, the variance taken (the larger of Δ²/12 and a flat tail's), and each moment's
-    noise part, absolute [units of the moment] and as a fraction of the measured moment."""
-    delta = height_step(z_measured)
-    tail, flat = _tail_floor(residual, dx, dy)
-    candidates = []
-    if delta is not None:
-        candidates.append((delta * delta / 12.0, "quantisation: heights in steps of the height_step, variance step^2/12"))
-    if flat:
-        candidates.append((tail, "a white floor in the spectrum's tail (instrument noise and quantisation)"))
-    variance, source = max(candidates, key=lambda t: t[0]) if candidates else (0.0, "none detected")
-    if tail is None:  # dropouts: the periodogram needs a complete map
-        source += "; the spectrum's tail not read (the map has missing points; --fill harmonic reads it)"
-    parts = white_noise_moments(variance, dx, dy, theta, estimator=estimator, order=order, shape=residual.shape)
-    return {"height_step": delta, "tail_variance": tail, "tail_flat": flat, "variance": variance,
-            "source": source, "contribution": parts,
-            "fraction": {k: (parts[k] / values[k] if values[k] > 0 else math.nan) for k in _NOISE_MOMENTS},
-            "limit": NOISE_LIMIT}
-
-
-def _noise_removed_ratios(scales, variance, dx, dy, theta, estimator, order, shape):
-    """``scales`` with "fine_over_this_noise_removed" at each coarser factor k: the ratio of the
-    moments at dx and k dx after the estimated white-noise part is taken from each (the part
-    falls by k² for slopes, k⁴ for curvatures); NaN where the noise part reaches the moment."""
-    fine = white_noise_moments(variance, dx, dy, theta, estimator=estimator, order=order, shape=shape)
-    out = [scales[0]]
-    for sc in scales[1:]:
-        coarse = white_noise_moments(variance, dx, dy, theta, estimator=estimator, order=order, shape=shape,
-                                     step=sc["factor"])
-        ratios = {}
-        for n, r in sc["fine_over_this"].items():
-            top, bottom = r * sc[n] - fine[n], sc[n] - coarse[n]
-            judged = top > (1.0 - NOISE_DOMINATES) * r * sc[n] and bottom > 0
-            ratios[n] = top / bottom if judged else math.nan
-        out.append({**sc, "fine_over_this_noise_removed": ratios})
-    return out
-
-
 def _check_flat(z, residual):
     ok = np.isfinite(residual)
     sq = math.sqrt(float(np.mean(residual[ok] ** 2)))
@@ -621,7 +385,7 @@ def measure_heights(z, dx, dy=None, *, estimator="fd", order=6, window="hann", d
     elif estimator == "spectral" and missing > 0:
         raise ValueError(f"the periodogram needs a complete map, {100 * missing:.2g} % is missing: "
                          "use the fd estimator (it works around dropouts) or fill the holes (--fill harmonic)")
-    residual, form = _detrend(z, dx, dy, detrend)
+    residual, form = remove_form(z, dx, dy, detrend)
     _check_flat(z, residual)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
@@ -630,8 +394,8 @@ def measure_heights(z, dx, dy=None, *, estimator="fd", order=6, window="hann", d
         else:
             result = _measure_spectral(residual, dx, dy, window, lay_angle_deg)
         values, theta, m11_map, uncertainty, scales = result
-        noise = _noise_floor(measured_heights, residual, dx, dy, theta, estimator, order, values)
-        scales = _noise_removed_ratios(scales, noise["variance"], dx, dy, theta, estimator, order, residual.shape)
+        noise = noise_floor(measured_heights, residual, dx, dy, theta, estimator, order, values)
+        scales = noise_removed_ratios(scales, noise["variance"], dx, dy, theta, estimator, order, residual.shape)
         measured = MeasuredMoments(
             values=values, lay_angle_deg=math.degrees(theta), m11_map=m11_map, uncertainty=uncertainty,
             scales=tuple(scales), missing_fraction=missing, fill=fill, estimator=estimator,
@@ -727,7 +491,7 @@ def _warn_about(m: MeasuredMoments, lay_found: bool) -> None:
                    f"a white floor in the spectrum's tail (noise variance {noise['variance']:.3g} in the heights' unit squared)")
             warnings.warn(MeasurementWarning(
                 f"height noise is an estimated {parts} ({how}; more than {100 * NOISE_LIMIT:g} %, "
-                "statistics.measure.NOISE_LIMIT): these moments are inflated by it; 'noise_floor' has each moment's "
+                "statistics.noise.NOISE_LIMIT): these moments are inflated by it; 'noise_floor' has each moment's "
                 "noise part, and at 2 dx the curvatures' part is 16 times smaller (see 'scales')"), stacklevel=3)
     ok = m.validity()
     if ok["mu"] is None:

@@ -28,7 +28,7 @@ from scipy.special import ndtr
 
 from .surface import SpectralMoments
 
-__all__ = ["SummitStatistics", "gaussian_summit_statistics", "map_summits", "measure_summits"]
+__all__ = ["SummitStatistics", "gaussian_summit_statistics", "map_summits", "measure_summits", "BEM_M22", "m22_effect"]
 
 #: Gauss–Legendre points per axis on [0, _U] in units of √m40, √m04 (the integrand is smooth
 #: and below e^-60 of its peak beyond _U = 11; 160 points give 1e-12, tests/statistics/test_summits.py)
@@ -138,3 +138,48 @@ def measure_summits(z, dx: float, dy: float) -> SummitStatistics:
     kappa = 0.5 * (np.abs(zxx[mask]) + np.abs(zyy[mask]))
     return SummitStatistics(density=n / (nx * dx * ny * dy), mean_curvature=float(kappa.mean()),
                             mean_height=float(heights.mean()), height_std=float(heights.std()), count=n)
+
+
+#: the m22 term as the BEM comparison measured it (docs/bem.md; 512², 6 seeds): the surfaces' ρ² =
+#: m22²/(m40 m04) (elliptically stretched isotropic: 1/9), their summits over (17)'s (measured on the
+#: maps, "Why"), and the model's area below the BEM's where the seeds agree to 5 % ("Where the model
+#: holds"), per family, as fractions; table1's A_BEM/A_BGK there ("Results", 512² column, W/A0 = 20–400)
+BEM_M22 = {"rho2": 1.0 / 9.0, "summit_ratio": (1.18, 1.24),
+           "area_low": {"table1": (0.175, 0.203), "alpha3": (0.089, 0.112)},
+           "area_ratio_table1": (1.21, 1.25)}
+
+
+def m22_effect(moments, m22: float, m22_uncertainty: float = 0.0) -> dict:
+    """What the neglected m22 [L⁻²] means for ``moments`` (a SpectralMoments, lay frame), against
+    what the BEM comparison measured (:data:`BEM_M22`): ρ² = m22²/(m40 m04); the summits of a
+    Gaussian surface with this m22 over those (17) counts (statistics.summits, Rice formula);
+    whether that ratio is within the BEM's measured ones; the BEM's area errors; and, beyond them,
+    the model's area deficit extrapolated as 1 − 1/summit_ratio (on table1's surface the BEM's area
+    was 1.21–1.25 times the model's at 1.21 times the summits: the deficit followed the summits).
+    Beyond the BEM's range means beyond it even with m22 lowered by two standard uncertainties
+    ``m22_uncertainty`` (a measured m22 scatters about its surface's: a map of a surface with the
+    BEM's ρ² = 1/9 measures 0.10–0.14). ``message``: one sentence with these numbers, or None
+    within the BEM's range."""
+    rho2 = m22 * m22 / (moments.m40 * moments.m04)
+    out = {"rho2": rho2, "summit_ratio": None, "within_bem_measured": None, "bem": BEM_M22,
+           "area_deficit_extrapolated": None, "message": None}
+    if not (m22 >= 0.0 and rho2 < 1.0):
+        out["message"] = (f"m22^2/(m40 m04) = {rho2:.3g} is outside [0, 1): the curvature fields are not those of "
+                          "a Gaussian surface (noise, or too few points); the m22 term's effect is not estimated")
+        return out
+    ratio = gaussian_summit_statistics(moments, m22).density / moments.summit_density
+    low = BEM_M22["area_low"]
+    lo, hi = min(v[0] for v in low.values()), max(v[1] for v in low.values())
+    low_m22 = max(m22 - 2.0 * (m22_uncertainty if np.isfinite(m22_uncertainty) else 0.0), 0.0)
+    low_ratio = gaussian_summit_statistics(moments, low_m22).density / moments.summit_density
+    out.update(summit_ratio=ratio, within_bem_measured=bool(low_ratio <= BEM_M22["summit_ratio"][1]))
+    if not out["within_bem_measured"]:
+        out["area_deficit_extrapolated"] = 1.0 - 1.0 / ratio
+        out["message"] = (
+            f"m22^2/(m40 m04) = {rho2:.3g}: a Gaussian surface with these moments has {ratio:.3g} times the summits the "
+            f"model counts ((17) drops m22; statistics.summits); the BEM comparison measured the model's area "
+            f"{100 * lo:.1f}-{100 * hi:.1f} % below the exact one on surfaces with {BEM_M22['summit_ratio'][0]:g}-"
+            f"{BEM_M22['summit_ratio'][1]:g} times the summits (rho^2 = 1/9; docs/bem.md) and did not measure this "
+            f"rho^2: read A/A0 as a lower estimate, extrapolated up to {100 * out['area_deficit_extrapolated']:.0f} % low "
+            "(statistics.summits.m22_effect)")
+    return out
