@@ -140,3 +140,18 @@ def test_plot_on_a_full_disk(cli_run, tmp_path, monkeypatch):
     code, out, err = cli_run("moments", tmp_path / "z.npy", "--dx", "0.25", "--plot", tmp_path / "s.png")
     _one_line(code, out, err, "--plot", "No space left on device")
     assert not (tmp_path / "s.png").exists()
+
+
+def test_plot_on_a_real_full_disk_error_names_the_option(cli_run, tmp_path, monkeypatch):
+    """The figure's own write failing (matplotlib's savefig: ENOSPC) reaches the command as the
+    plots' one-line WriteError; the command names --plot and writes nothing."""
+    import matplotlib.figure
+
+    def full(self, *args, **kwargs):
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    monkeypatch.setattr(matplotlib.figure.Figure, "savefig", full)
+    np.save(tmp_path / "z.npy", Z)
+    code, out, err = cli_run("moments", tmp_path / "z.npy", "--dx", "0.25", "--plot", tmp_path / "s.png")
+    _one_line(code, out, err, "--plot", "No space left on device", "s.png")
+    assert not (tmp_path / "s.png").exists() and not list(tmp_path.glob(".s.png*"))

@@ -103,3 +103,22 @@ def test_bad_files_are_one_line(cli_run, tmp_path, monkeypatch):
     np.savetxt(tmp_path / "big.csv", Z, delimiter=",")
     monkeypatch.setenv("ROUGHCONTACT_MAX_INPUT_MB", "0.01")
     assert "ROUGHCONTACT_MAX_INPUT_MB" in one_line_error(cli_run, tmp_path / "big.csv", "--dx", "1")
+
+
+def test_a_spacing_given_in_metres_as_micrometres_is_warned_about(cli_run, tmp_path):
+    """The plausibility check judges the spacing the command uses: --dx 1.25e-6 read in µm (a
+    1.25 pm interval) on a .npy that states no unit, and the warning is in the JSON's warnings."""
+    import json
+
+    np.save(tmp_path / "m.npy", Z * 1e-7)
+    code, out, err = cli_run("moments", tmp_path / "m.npy", "--dx", "1.25e-6", "--json")
+    assert code == 0
+    (warning,) = [line for line in err.splitlines() if "implausible" in line]
+    assert "sampling interval of 1.25e-06 um" in warning and "rms height" in warning
+    assert any("implausible" in w and "sampling interval" in w for w in json.loads(out)["warnings"])
+
+
+def test_too_few_points_names_the_file(cli_run, tmp_path):
+    np.save(tmp_path / "tiny.npy", Z[:2, :3])
+    err = one_line_error(cli_run, tmp_path / "tiny.npy", "--dx", "1")
+    assert str(tmp_path / "tiny.npy") in err and "at least" in err

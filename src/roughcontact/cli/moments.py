@@ -80,12 +80,13 @@ def _map_in_unit(args):
     for name, given, in_file in (("--xy-unit", args.xy_unit, found.xy_unit), ("--z-unit", args.z_unit, found.z_unit)):
         if given and in_file and normalise(given) != in_file:
             notes.append(f"{name} {given} overrides the file's {in_file}")
-    doubt = unit_warning(found, xy_unit, z_unit, args.file)
+    # --dx, --dy are in --xy-unit if given, else in --unit; the file's spacing in its own unit
+    given_unit = normalise(args.xy_unit) if args.xy_unit else unit
+    # the spacing judged as used: --dx in its unit where given, else the file's
+    doubt = unit_warning(found, given_unit if args.dx is not None else xy_unit, z_unit, args.file, dx=args.dx)
     if doubt:  # e.g. metres taken as µm: said (note and warning), not refused
         notes.append(doubt)
         warnings.warn(UnitWarning(doubt))
-    # --dx, --dy are in --xy-unit if given, else in --unit; the file's spacing in its own unit
-    given_unit = normalise(args.xy_unit) if args.xy_unit else unit
     if args.dx is not None or args.dy is not None:
         if args.dx is None:
             raise CLIError("--dy needs --dx")
@@ -128,11 +129,14 @@ def _run_moments(args) -> dict[str, Any]:
     unit = normalise(args.unit)
     if args.lay_angle is not None and not math.isfinite(args.lay_angle):
         raise CLIError(f"--lay-angle {args.lay_angle}: the lay angle must be a finite number of degrees")
-    z, dx, dy, source = _map_in_unit(args)
-    with warnings.catch_warnings(record=True) as caught:
+    with warnings.catch_warnings(record=True) as caught:  # the reading's warnings too ("warnings" in the JSON)
         warnings.simplefilter("always")
-        r = measure_heights(z, dx, dy, estimator=args.estimator, order=args.order, window=args.window,
-                            detrend=args.detrend, lay_angle_deg=args.lay_angle, fill=args.fill)
+        z, dx, dy, source = _map_in_unit(args)
+        try:
+            r = measure_heights(z, dx, dy, estimator=args.estimator, order=args.order, window=args.window,
+                                detrend=args.detrend, lay_angle_deg=args.lay_angle, fill=args.fill)
+        except ValueError as exc:  # e.g. too few points: say of which file
+            raise CLIError(f"{args.file}: {exc}") from None
     L = unit
     units = {"m00": f"{L}^2", "m20": "1", "m02": "1", "m40": f"1/{L}^2", "m04": f"1/{L}^2", "m11_map": "1",
              "m22": f"1/{L}^2", "m31": f"1/{L}^2", "m13": f"1/{L}^2", "dx": L, "dy": L,
@@ -161,6 +165,7 @@ def _run_moments(args) -> dict[str, Any]:
         save_height_map(args.save_rotated, rotate_map(z, r.dx, r.dy, r.lay_angle_deg), "--save-rotated")
     if args.plot:
         from ..plots import moments_against_scale, save_figure
+        from ..write_errors import WriteError
 
         try:
             save_figure(moments_against_scale(_json_safe(payload)), args.plot)
@@ -168,6 +173,8 @@ def _run_moments(args) -> dict[str, Any]:
             raise CLIError(str(exc)) from None
         except OSError as exc:  # e.g. a full disk (ENOSPC): atomic_path left nothing under the name
             raise CLIError(f"--plot {args.plot}: cannot write it ({exc.strerror or exc})") from None
+        except WriteError as exc:  # save_figure's one line: the file, the reason, whether the disk is full
+            raise CLIError(f"--plot: {exc}") from None
         payload["plot"] = str(args.plot)
     payload["warnings"] = relay_warnings(caught)
     return _json_safe(payload)
