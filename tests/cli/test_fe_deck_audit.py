@@ -113,7 +113,7 @@ def test_a_huge_include_and_a_deep_include_chain_are_one_line(capsys, tmp_path, 
 
 def test_an_include_outside_the_folder_is_not_echoed(capsys, tmp_path, law):
     (tmp_path / "deck").mkdir()
-    (tmp_path / "secret").write_text("alice:x:1000:1000:Alice,,,:/home/alice:/bin/bash\n")
+    (tmp_path / "secret").write_text("alice:x:1000:1000:Alice,,,:/srv/alice:/bin/bash\n")
     (tmp_path / "deck" / "m.inp").write_text(deck(model="*NSET, NSET=X\n*INCLUDE, INPUT=../secret\n"))
     said = one_line_error(capsys, tmp_path / "deck" / "m.inp", law)
     assert said.startswith(f"{tmp_path / 'secret'}:1: the deck cannot use this line")
