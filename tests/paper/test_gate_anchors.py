@@ -320,7 +320,7 @@ def test_the_declared_counts_are_the_configured_samples_csvs_and_punch_runs():
         "friction_slip_rule", "friction_hardening", "friction_cases")]
     tables = [s for s, sc in scenes.items() if sc["kind"] in ("table", "mindlin_table")]
     numerics = [s for s, sc in scenes.items() if sc["kind"] == "elastoplastic_numerics"]
-    fe = ["table4", "fig13", "fe_beam_study", "table5", "fe_punch_readings", "fig18", "fig19"]
+    fe = ["table4", "fig13", "fe_beam_study", "table5", "fe_punch_readings", "fig18", "fig19", "fe_export"]
     drawings = ["fig11", "fig12", "fig16", "fig17"]
     assert EXPECTED["published_csv"] == len(tables + figures + numerics + fe + drawings) + len(CONFIG["geometry_figures"])
     from roughcontact.examples import runs as fe_runs

@@ -108,6 +108,8 @@ def published_csv_jobs():
             "kind": "fe_punch_slips", "family": family, "readings": ["main", FE_PUNCH["sensitivity"]["reading"]],
             "paths": fe_punch_paths(FE_PUNCH_RUNS),
             "inputs": [f"results/fe/punch/{g}" for g in FE_PUNCH_GROUPS if not g.split("-", 1)[1].startswith("sens-")]}
+    # the exported pressure-overclosure tables of docs/fe-export.md (from the configuration)
+    jobs["paper_figures/fe_export.csv"] = {"kind": "fe_export", "cfg": CALCULIX, "beam_cfg": FE_BEAM}
     # the element drawings (the engine's own element definitions) and Figs 1-2 (from the configuration)
     for name, (element, _) in DRAWINGS.items():
         jobs[f"paper_figures/{name}.csv"] = {"kind": "drawing", "element": element}
@@ -138,7 +140,7 @@ rule published_csv:
         files=_published_csv_inputs(),
         writers=[f"workflow/scripts/{w}.py" for w in ("table", "figure", "numerics_report", "fe_table4", "fe_table5",
                                                       "fe_fig13", "fe_beam_study", "fe_punch_slips", "drawing",
-                                                      "geometry_figure")],
+                                                      "geometry_figure", "fe_export_figure")],
         expected="config/expected_verdicts.yaml",
         code=GATE_ANCHOR_SOURCES,
     output:

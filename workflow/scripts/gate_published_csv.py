@@ -45,6 +45,8 @@ def derive(job, cache):
         return _writer(kind).csv_text(job["paths"], job["runs"])
     if kind == "fe_punch_slips":
         return _writer(kind).csv_text(job["family"], job["readings"], job["paths"])
+    if kind == "fe_export":
+        return _writer("fe_export_figure").csv_text(job["cfg"], job["beam_cfg"])
     if kind == "drawing":
         return _writer(kind).csv_text(job["element"])
     if kind == "geometry":
