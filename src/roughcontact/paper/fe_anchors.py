@@ -33,6 +33,7 @@ from typing import TYPE_CHECKING, Any, Mapping
 
 import numpy as np
 
+from ..limits import describe
 from .report import md_escape
 from .verify import NOT_REPRODUCED, REPRODUCED, Check, numerics_id
 
@@ -261,7 +262,7 @@ def rebuilt_slips(ds, tangential_form: str) -> dict[str, np.ndarray]:
         elif tangential_form == "secant":
             elastic, active = over(t, k) - over(tp, kp), k > 0.0
         else:
-            raise ValueError(f"unknown tangential form {tangential_form!r}")
+            raise ValueError(f"unknown tangential form {describe(tangential_form)}")
         out[a] = np.cumsum(np.where(active, J - Jp - elastic, 0.0), axis=0)
     return out
 

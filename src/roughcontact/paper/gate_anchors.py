@@ -31,6 +31,7 @@ from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
 
+from ..limits import describe
 from .verify import NOT_REPRODUCED, REPRODUCED, Check, numerics_id
 
 __all__ = ["CURVE_SCENE", "CSV_SCENE", "TwinPoint", "sample_points", "twin_values", "curve_anchor_checks",
@@ -95,7 +96,7 @@ def _coordinate(name: str, want, axis: np.ndarray | None, where: str):
             raise ValueError(f"{where}: {name} must be a value or {{index: k}} of its axis")
         k = want["index"]
         if isinstance(k, bool) or not isinstance(k, int) or not -axis.size <= k < axis.size:
-            raise ValueError(f"{where}: {name} index must be an integer in [0, {axis.size}), got {k!r}")
+            raise ValueError(f"{where}: {name} index must be an integer in [0, {axis.size}), got {describe(k)}")
         return float(axis[k])
     if isinstance(want, str):
         return want
@@ -147,7 +148,7 @@ def sample_points(kind: str, name: str, cfg: Mapping[str, Any], samples: Sequenc
             _only(sample, {"closure", "m00"}, where)
             closure = sample["closure"]
             if closure not in cfg["closures"]:
-                raise ValueError(f"{where}: closure {closure!r} is not one of the scene's {cfg['closures']}")
+                raise ValueError(f"{where}: closure {describe(closure)} is not one of the scene's {cfg['closures']}")
             m00 = _coordinate("m00", sample["m00"], np.asarray(cfg["m00"], dtype=float), where)
             inputs = {"material": {"Y": float(cfg["Y"])}, "yield-from-psi": {"psi": float(cfg["psi"])},
                       "paper-literal": {"psi": float(cfg["psi"]), "Y": float(cfg["Y"])}}[closure]
@@ -160,7 +161,7 @@ def sample_points(kind: str, name: str, cfg: Mapping[str, Any], samples: Sequenc
                 _only(sample, {"variant"}, where)
                 variant = sample["variant"]
                 if variant != "base" and variant not in cfg["variants"]:
-                    raise ValueError(f"{where}: variant {variant!r} is not one of the scene's "
+                    raise ValueError(f"{where}: variant {describe(variant)} is not one of the scene's "
                                      f"{['base', *cfg['variants']]}")
                 factors = {} if variant == "base" else cfg["variants"][variant]
                 moments = {k: v * float(factors.get(k, 1.0)) for k, v in base.items()}
@@ -175,7 +176,7 @@ def sample_points(kind: str, name: str, cfg: Mapping[str, Any], samples: Sequenc
                                      cfg.get("hertz", "exact"), {"psi_pressure": "pressure",
                                                                  "psi_stiffness": "stiffness"}))
         else:
-            raise ValueError(f"{where}: no twin for the scene kind {kind!r}")
+            raise ValueError(f"{where}: no twin for the scene kind {describe(kind)}")
     return out
 
 
@@ -299,7 +300,8 @@ def csv_cell_check(name: str, published: str, derived: str, tolerance: Mapping[s
     der = list(csv.reader(_io.StringIO(derived)))
     diffs, worst = [], 0.0
     if not pub or not der or pub[0] != der[0]:
-        diffs.append(f"header {pub[0] if pub else []} vs derived {der[0] if der else []}")
+        diffs.append(f"header {describe(','.join(pub[0]) if pub else '')} vs derived "
+                     f"{describe(','.join(der[0]) if der else '')}")
         worst = math.inf
     else:
         header = der[0]
@@ -323,7 +325,7 @@ def csv_cell_check(name: str, published: str, derived: str, tolerance: Mapping[s
                 else:
                     worst = math.inf
                 row = ",".join(b[:2])
-                diffs.append(f"line {i} ({row}), column {col!r}: published {x!r} vs derived {y!r}")
+                diffs.append(f"line {i} ({row}), column {describe(col)}: published {describe(x)} vs derived {describe(y)}")
     ok = not diffs
     n_cells = sum(len(r) for r in der[1:])
     detail = (f"{name}: all {n_cells} cells equal the ones re-derived from its result files" if ok else
