@@ -340,7 +340,7 @@ def test_the_gate_names_the_cell_of_each_regression(tmp_path):
 
     bad = ga.csv_cell_check("paper_figures/table3.csv", DERIVED.replace("1.4285714285714286", "1.5"), DERIVED, CSV_TOL)
     checks = verify.apply_expectations([bad], {})
-    summary = verify.summarize(checks)
+    summary = {**verify.summarize(checks), "regression_details": ga.regression_details(checks)}
     assert not summary["passed"] and summary["regression_ids"] == [bad.id]
     spec = importlib.util.spec_from_file_location("verify_gate", ROOT / "workflow" / "scripts" / "verify_gate.py")
     gate = importlib.util.module_from_spec(spec)

@@ -7,7 +7,7 @@ from pathlib import Path
 import yaml
 
 from roughcontact import __version__, io
-from roughcontact.paper import report, verify
+from roughcontact.paper import gate_anchors, report, verify
 
 
 def _speed_section(path):
@@ -62,6 +62,7 @@ def run(checks_files, speed, fe_speed, calculix, expected, errata, scene_titles,
             "reference dps": reference_dps,
         }
         summary = verify.summarize(checks, coverage)
+        summary["regression_details"] = gate_anchors.regression_details(checks)  # printed by the gate
         summary["provenance"] = provenance
         logger.info("summary: %s", json.dumps({k: v for k, v in summary.items() if k != "by_kind"}))
         io.write_text(out["md"], report.render_verification_markdown(

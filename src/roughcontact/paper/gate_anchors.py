@@ -35,7 +35,7 @@ from ..limits import describe
 from .verify import NOT_REPRODUCED, REPRODUCED, Check, numerics_id
 
 __all__ = ["CURVE_SCENE", "CSV_SCENE", "TwinPoint", "sample_points", "twin_values", "curve_anchor_checks",
-           "csv_cell_check", "EP_PARTS", "ELASTIC_MODEL"]
+           "csv_cell_check", "regression_details", "EP_PARTS", "ELASTIC_MODEL"]
 
 CURVE_SCENE, CSV_SCENE = "curve_anchors", "published_csv"
 _MOMENTS = ("m00", "m20", "m02", "m40", "m04")
@@ -336,3 +336,15 @@ def csv_cell_check(name: str, published: str, derived: str, tolerance: Mapping[s
                  description="the published CSV against the files it was written from, cell by cell", model=name,
                  quantity="cells", s=name, target=0.0, value=float(len(diffs)), error=worst, tolerance=rtol,
                  tolerance_why=why)
+
+
+def regression_details(checks: Sequence[Check], limit: int = 300) -> dict[str, str]:
+    """{id: detail} of the regressions among ``checks`` (after verify.apply_expectations), each
+    detail on one line cut to ``limit`` characters: the summary's ``regression_details``, which
+    the gate prints beside each id (the tampered file and its cell, not only the check's name)."""
+    out = {}
+    for c in checks:
+        if c.status == "regression":
+            text = " ".join(str(c.detail).split())
+            out[c.id] = text if len(text) <= limit else text[: limit - 1] + "…"
+    return out

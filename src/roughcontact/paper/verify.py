@@ -557,12 +557,6 @@ def check_coverage(checks: Sequence[Check], data: Mapping[str, Any], tools: Iter
     return out
 
 
-def _short(text: str, limit: int = 300) -> str:
-    """A check's detail cut to ``limit`` characters for one line of the gate's message."""
-    text = " ".join(str(text).split())
-    return text if len(text) <= limit else text[: limit - 1] + "…"
-
-
 def summarize(checks: Sequence[Check], coverage: Mapping[str, Any] | None = None) -> dict[str, Any]:
     """Counts overall, per scene and per kind; ``passed`` is False if there is a regression, a
     check improved beyond its documented expectation (unexplained until the expectation is
@@ -593,8 +587,6 @@ def summarize(checks: Sequence[Check], coverage: Mapping[str, Any] | None = None
         "by_scene": {s: counts([c for c in checks if c.scene == s]) for s in scenes},
         "by_kind": {k: counts([c for c in checks if c.kind == k]) for k in kinds},
         "regression_ids": [c.id for c in checks if c.status == STATUS_REGRESSION],
-        # what each regression found (the file, the cell, the numbers), for the gate's message
-        "regression_details": {c.id: _short(c.detail) for c in checks if c.status == STATUS_REGRESSION},
         "improved_ids": [c.id for c in checks if c.status == STATUS_IMPROVED],
         # the declared checks of optional scenes whose tool is absent: neither run nor failed
         "skipped": sum(int(m.get("checks", 0)) for m in coverage["skipped"]),
