@@ -186,8 +186,9 @@ def test_scaled_curves_sweep_punch_slips_and_an_edited_table3_csv_turn_snakemake
     cmd = [str(snakemake), "--snakefile", str(repo / "Snakefile"), "--directory", str(repo), "--cores", "2",
            "--workflow-profile", "none", "--config", f"reference_dps={_reference_dps(ROOT / 'results')}",
            "--rerun-triggers", "mtime", "--keep-going", "verify"]
-    # the copy brought up to date first (after CI's `snakemake verify`: nothing to do): were the
-    # code changed since the finished run, the injections would be recomputed away and prove nothing
+    # the finished run must be of this checkout's code (CI's is): Snakemake notices a changed
+    # module (a new code fingerprint) only where an injection pulls a job in, and would then
+    # recompute the injections away. Stale outputs by time are brought up to date first.
     prep = subprocess.run(cmd, cwd=repo, capture_output=True, text=True, timeout=3600)
     assert prep.returncode == 0, (prep.stdout + prep.stderr)[-3000:]
     scaled = _scale_ep_curves(repo / "results")
