@@ -224,3 +224,12 @@ def test_check_count_of_an_int_beyond_a_double_is_one_line():
 
 def test_describe_keeps_exactly_limit_characters():
     assert limits.describe("x" * 10_000) == "'" + "x" * 60 + "…'"
+
+
+def test_every_limit_is_in_the_readme():
+    """A user refused by a limit finds the variable that raises it in the README."""
+    from pathlib import Path
+
+    readme = (Path(__file__).resolve().parents[1] / "README.md").read_text()
+    for var, _default, _what, _unit in limits.LIMITS.values():
+        assert f"`{var}`" in readme, var
