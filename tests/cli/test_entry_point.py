@@ -42,3 +42,14 @@ def test_ctrl_c_in_any_command_is_one_line_and_exit_130(monkeypatch, capsys):
     out, err = capsys.readouterr()
     assert code == cli.EXIT_INTERRUPTED == 130
     assert out == "" and err == "roughcontact: error: interrupted\n"
+
+
+def test_an_arithmetic_error_of_the_computation_is_one_line_and_exit_1(capsys):
+    """Issue 29's audit kind, found by a sweep of extreme options: m00 = 1e23 um^2 with --psi 1
+    derives a yield strength 2e4 times E*, and the elasto-plastic kernel divided by zero
+    (a ZeroDivisionError traceback)."""
+    code = cli.main(["elastoplastic", "--m00", "99999999999999999999999", "--m20", "8e-5", "--m02", "8e-4",
+                     "--m40", "1.04e-6", "--m04", "1.04e-4", "--E-star", "114000", "--psi", "1", "--s", "1"])
+    out, err = capsys.readouterr()
+    assert code == 1 and out == "" and len(err.splitlines()) == 1
+    assert err.startswith("roughcontact: error: the computation failed for these inputs (ZeroDivisionError")

@@ -36,7 +36,8 @@ Files a command writes (export -o, moments --save-rotated, fe --vtu) are options
 (atomically, under exactly the name given).
 
 Exit codes: 0 success; 2 bad input (one line on stderr, "roughcontact: error: ...");
-1 a computed value is not finite; 141 (128 + SIGPIPE, as ``cat`` or ``seq`` give) when the
+1 a computed value is not finite (also an arithmetic error of the computation: a division by
+zero or an overflow on inputs far outside the model's range); 141 (128 + SIGPIPE, as ``cat`` or ``seq`` give) when the
 reader of the output went away (``roughcontact ... | head -1``): no message, no traceback. Any
 other exception is a bug and propagates (traceback).
 The library's warnings (results outside the model's range of validity) are printed as one
@@ -365,6 +366,11 @@ def _main(argv: Sequence[str] | None) -> int:
         except (ValueError, TypeError) as exc:
             # the library's validation errors name the violated condition
             raise CLIError(_one_line(str(exc)), code=2) from exc
+        except ArithmeticError as exc:
+            # a numba kernel's division by zero or an overflow on inputs its checks let through
+            # (e.g. m00 = 1e23 um^2 with --psi 1: a yield strength 2e4 times E*): not finite, exit 1
+            raise CLIError(f"the computation failed for these inputs ({type(exc).__name__}: {exc}); they are far "
+                           "outside the model's range (docs/derivation.md, 'Range of validity')", code=1) from exc
         _check_finite(payload)
         text = (
             json.dumps(payload, indent=2, allow_nan=False)
