@@ -57,7 +57,7 @@ def test_describe_an_alias_bomb_without_building_its_repr():
     for _ in range(9):
         level = [level] * 9
     assert limits.describe(level) == "a list of 9 items"
-    assert limits.describe({"a": level}) == "a mapping of 1 keys"
+    assert limits.describe({"a": level}) == "a mapping of 1 key"
 
 
 # ---------------------------------------------------------------------------------------------

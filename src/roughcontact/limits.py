@@ -159,7 +159,7 @@ def describe(value: Any, limit: int = 60) -> str:
     if hasattr(value, "shape") and hasattr(value, "dtype"):
         return f"an array of shape {tuple(int(n) for n in value.shape)}"
     if isinstance(value, dict):
-        return f"a mapping of {len(value)} keys"
+        return f"a mapping of {len(value)} key{'' if len(value) == 1 else 's'}"
     if isinstance(value, (list, tuple)):
         if len(value) <= 6 and all(isinstance(v, (int, float)) or hasattr(v, "dtype") for v in value):
             text = "(" + ", ".join(describe(v, limit) for v in value) + ("," if len(value) == 1 else "") + ")"
@@ -167,7 +167,7 @@ def describe(value: Any, limit: int = 60) -> str:
                 text = "[" + text[1:-1].rstrip(",") + "]"
             if len(text) <= limit:
                 return text
-        return f"a list of {len(value)} items"
+        return f"a list of {len(value)} item{'' if len(value) == 1 else 's'}"
     text = object.__repr__(value) if not isinstance(value, (bytes, bytearray)) else repr(bytes(value[:limit]))
     return text if len(text) <= limit else text[:limit] + "…"
 

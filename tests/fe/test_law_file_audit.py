@@ -349,3 +349,24 @@ def test_mu_o_is_documented_as_the_ratio_the_law_uses():
     assert model.mu(0.0, 0.0) == pytest.approx((0.10, 0.10), rel=1e-15)
     assert model.mu(1e6, 1e6) == pytest.approx((0.5, 0.5), rel=1e-12)
     assert friction.OrthotropicHardening(0.7, 0.7, 0.1, 0.1).mu(0.0, 0.0) == pytest.approx((0.07, 0.07))
+
+
+@pytest.mark.parametrize("path, value, named", [
+    (("length_unit",), [0, 0, 1], "length_unit"),
+    (("stress_unit",), {"a": 1}, "stress_unit"),
+    (("interactions", "ROUGH", "law"), ["elastic"], "law"),
+    (("interactions", "ROUGH", "tangential_form"), {"a": 1}, "tangential_form"),
+    (("interactions", "ROUGH", "moments", "unit"), [1, 2], "unit"),
+])
+def test_a_list_or_mapping_where_a_name_belongs_is_one_line_naming_the_key(path, value, named):
+    """A mutation sweep of block.yaml found TypeError 'unhashable type' (through the CLI: exit 2
+    with that text alone) where a unit or a law name was a YAML list or mapping."""
+    law = _law()
+    *parents, key = path
+    node = law
+    for p in parents:
+        node = node[p]
+    node[key] = value
+    with pytest.raises(LawError) as err:
+        law_file_from_dict(law, "law.yaml", EXAMPLES)
+    assert named in _one_line(err) and "must be" in str(err.value)

@@ -95,6 +95,12 @@ def _fail(where: str, message: str):
     raise LawError(f"{where}: {message}")
 
 
+def _named(value, choices) -> bool:
+    """Whether ``value`` is one of the names ``choices`` (a list or a mapping from YAML is not a
+    name: ``[0, 0, 1] in LENGTH_UNITS`` would raise TypeError, unhashable)."""
+    return isinstance(value, str) and value in choices
+
+
 def _number(value, where: str, *, positive=True, allow_zero=False) -> float:
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         _fail(where, f"must be a number, got {describe(value)}")
@@ -263,15 +269,15 @@ class InteractionLaw:
     tangential_form: str = "incremental-end"
 
     def __post_init__(self):
-        if self.moments_unit not in LENGTH_UNITS:
+        if not _named(self.moments_unit, LENGTH_UNITS):
             raise LawError(f"moments unit must be one of {', '.join(LENGTH_UNITS)}, got {describe(self.moments_unit)}")
-        if self.law not in ("elastic", "elastoplastic"):
+        if not _named(self.law, ("elastic", "elastoplastic")):
             raise LawError(f"law must be elastic or elastoplastic, got {describe(self.law)}")
         if self.law == "elastic" and (self.psi is not None or self.yield_strength is not None):
             raise LawError("psi and yield_strength belong to law: elastoplastic")
         if self.law == "elastoplastic" and (self.psi is None) == (self.yield_strength is None):
             raise LawError("law: elastoplastic needs exactly one of psi and yield_strength")
-        if self.tangential_form not in friction.TANGENTIAL_FORMS:
+        if not _named(self.tangential_form, friction.TANGENTIAL_FORMS):
             raise LawError(f"tangential_form must be one of {', '.join(friction.TANGENTIAL_FORMS)}")
 
     def law_per_deck(self, length_unit: str) -> float:
@@ -352,7 +358,7 @@ def _moments(value, where: str, base: Path | None):
             _fail(where, f"{path} does not state its length unit (run `roughcontact moments --length-unit um ...`)")
     d = _keys(value, where, (*_MOMENTS, "unit"))
     unit = d["unit"]
-    if unit not in LENGTH_UNITS:
+    if not _named(unit, LENGTH_UNITS):
         _fail(f"{where}.unit", f"must be one of {', '.join(LENGTH_UNITS)}, got {describe(unit)}")
     values = {m: _number(d[m], f"{where}.{m}", positive=False) for m in _MOMENTS}
     try:
@@ -408,9 +414,9 @@ class LawFile:
     where: str = field(default="law file", compare=False)
 
     def __post_init__(self):
-        if self.length_unit not in LENGTH_UNITS:
+        if not _named(self.length_unit, LENGTH_UNITS):
             raise LawError(f"length_unit must be one of {', '.join(LENGTH_UNITS)}, got {describe(self.length_unit)}")
-        if self.stress_unit is not None and self.stress_unit not in STRESS_UNITS:
+        if self.stress_unit is not None and not _named(self.stress_unit, STRESS_UNITS):
             raise LawError(f"stress_unit must be one of {', '.join(STRESS_UNITS)}, got {describe(self.stress_unit)}")
 
     @property
@@ -429,11 +435,11 @@ class LawFile:
 def law_file_from_dict(data, where: str = "law file", base: Path | None = None) -> LawFile:
     """A :class:`LawFile` from the parsed mapping (module docstring); LawError naming the key."""
     d = _keys(data, where, **_TOP)
-    if d["length_unit"] not in LENGTH_UNITS:
+    if not _named(d["length_unit"], LENGTH_UNITS):
         _fail(f"{where}: length_unit", f"must be one of {', '.join(LENGTH_UNITS)}, got {describe(d['length_unit'])}")
     stress_unit = d.get("stress_unit")
     if stress_unit is not None:
-        if stress_unit not in STRESS_UNITS:
+        if not _named(stress_unit, STRESS_UNITS):
             _fail(f"{where}: stress_unit", f"must be one of {', '.join(STRESS_UNITS)}, got {describe(stress_unit)}")
         # forces in N: the stress unit is N/length_unit²; a stated one that differs contradicts it
         implied = 10.0 ** (-2 * LENGTH_UNITS[d["length_unit"]])
