@@ -1,4 +1,4 @@
-"""The package layout is the architecture (README, "Layout"): imports point one way through the
+"""The package layout is the architecture (docs/architecture.md, "Layout"): imports point one way through the
 layers, modules stay small, numba kernels call only kernels of their own file, and the tests
 mirror the packages."""
 

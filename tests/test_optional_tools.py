@@ -13,8 +13,8 @@ CalculiX; "every optional tool needs its absent path exercised, not only promise
   ≥ 3.11, and says in one line what is missing when none is, when `venv` cannot be created or
   when pip cannot install; the slow tier installs into Python 3.12 and 3.13 and runs tests there
   where those interpreters exist (skipped elsewhere, e.g. on CI);
-* make — the README gives the commands `make reproduce` and `make test` run (checked against
-  the Makefile here).
+* make — docs/workflow.md ("Without make") gives the commands `make reproduce` and `make test` run
+  (checked against the Makefile here).
 The browser of tests/test_browser.py skips with one line where chromium is absent.
 """
 
@@ -241,11 +241,12 @@ def test_makefile_says_when_venv_cannot_be_created(tmp_path, hide_programs):
                                         "apt-get install python3-venv, or python3.11-venv)")
 
 
-def test_readme_gives_the_commands_make_runs():
-    """Without make: the README's commands are the Makefile's (interpreter, install, workflow, tests)."""
-    readme = (ROOT / "README.md").read_text()
+def test_workflow_page_gives_the_commands_make_runs():
+    """Without make: docs/workflow.md's commands (the README's until issue 33) are the Makefile's
+    (interpreter, install, workflow, tests)."""
+    page = (ROOT / "docs" / "workflow.md").read_text()
     makefile = (ROOT / "Makefile").read_text()
-    section = readme.split("## Without make", 1)[1].split("\n## ", 1)[0]
+    section = page.split("## Without make", 1)[1].split("\n## ", 1)[0]
     install = next(line.strip() for line in makefile.splitlines() if "tools/install_env.py --python" in line)
     extras = install.split("--spec ", 1)[1].split()[0]  # what tools/install_env.py installs (uv, else pip)
     assert f"pip install --editable {extras}" in section
@@ -324,8 +325,10 @@ def test_ci_proves_the_absent_paths_and_installs_the_tools():
     assert [line for line in r.stdout.splitlines() if "::" in line] == no_ccx, r.stdout + r.stderr
 
 
-def test_readme_states_the_fresh_clone_time_with_the_venv_and_the_load():
-    readme = " ".join((ROOT / "README.md").read_text().split())
+def test_performance_page_states_the_fresh_clone_time_with_the_venv_and_the_load():
+    """docs/performance.md's last section (the README's until issue 33)."""
+    page = (ROOT / "docs" / "performance.md").read_text()
+    readme = " ".join(page.split("\n## `make reproduce` from a fresh clone", 1)[1].split("\n## ", 1)[0].split())
     assert "5 minutes on 2 cores: **not met**" in readme
     assert "including creating `.venv/`" in readme and "paper_figures/reproduction_time.md" in readme
     import re
@@ -333,4 +336,4 @@ def test_readme_states_the_fresh_clone_time_with_the_venv_and_the_load():
     m = re.search(r"From a fresh clone of commit \w+ without `ccx`, `CORES=2 make reproduce` took \*\*(\d+) s in all: "
                   r"(\d+) s creating `.venv/`, (\d+) s the workflow\*\*, on 2 cores .*?\(load average [\d.]+ at the start, "
                   r"[\d.]+ at the end\)", readme)
-    assert m and int(m[1]) >= int(m[2]) + int(m[3]), "the README's fresh-clone time, with .venv/ and the load"
+    assert m and int(m[1]) >= int(m[2]) + int(m[3]), "the fresh-clone time, with .venv/ and the load"

@@ -1,4 +1,4 @@
-"""The package's front door: the top-level names the README uses, ``python -m roughcontact``."""
+"""The package's front door: the top-level names the library's examples use (docs/usage.md), ``python -m roughcontact``."""
 
 import subprocess
 import sys
