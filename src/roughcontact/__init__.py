@@ -4,7 +4,7 @@ Reproduces and extends Buczkowski & Kleiber (2009), "Statistical Models of Rough
 for Finite Element 3D-Contact Analysis", Arch. Comput. Methods Eng. 16:399-424,
 doi:10.1007/s11831-009-9037-2.
 
-What the README uses is importable from the top level::
+What docs/usage.md uses is importable from the top level::
 
     from roughcontact import SpectralMoments, elastic_contact, elastoplastic_contact, resolve_material
     from roughcontact import NormalLawTable, InterfaceLaw, friction, AsperityMaterial
