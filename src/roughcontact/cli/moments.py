@@ -110,13 +110,15 @@ def _map_in_unit(args):
 
 def _check_spacing(shape, dx, dy, option, unit) -> None:
     """CLIError naming ``option`` unless dx, dy [unit] are finite, positive, and the map's extent
-    (n dx) and curvature scale (dx^-4) are finite doubles (--dx 1e308 ended in "SVD did not
-    converge")."""
+    (n dx) and curvature scale (dx^-4) are finite doubles (statistics.measure.spacing_fits: --dx 1e308
+    ended in "SVD did not converge"); the library checks the same, naming dx rather than the option."""
+    from ..statistics.measure import spacing_fits
+
     for name, d, n in (("dx", dx, shape[1]), ("dy", dy, shape[0])):
         shown = option if name == "dx" or option != "--dx" else "--dy"
         if not (math.isfinite(d) and d > 0):
             raise CLIError(f"{shown}: the sampling interval must be a finite positive length, got {d:g} {unit}")
-        if not (math.isfinite(n * d) and d > 1e-77):
+        if not spacing_fits(n, d):
             raise CLIError(f"{shown} {d:g} {unit}: with {n} points the map's extent or its curvatures (~1/{name}^4) are "
                            f"not finite double-precision numbers; give the spacing in a unit near it (--xy-unit, --unit)")
 

@@ -213,11 +213,16 @@ def _checked_options(dx, dy, estimator, window, detrend, order) -> tuple[float, 
     return dx, dy
 
 
+def spacing_fits(n: int, d: float) -> bool:
+    """Whether ``n`` points at spacing ``d`` give a finite extent n·d and a finite curvature scale
+    d⁻⁴ in doubles (dx = 1e308 overflowed in the plane's fit: "SVD did not converge")."""
+    return math.isfinite(n * d) and d > 1e-77  # (1e-77)⁻⁴ = 1e308, near the largest double
+
+
 def _checked_extent(shape, dx, dy, lay_angle_deg):
-    """ValueError unless the map's extent n·dx and its curvature scale dx⁻⁴ are finite doubles
-    (dx = 1e308 overflowed in the plane's fit: "SVD did not converge") and the lay angle is finite."""
+    """ValueError unless the map's spacing fits (:func:`spacing_fits`) and the lay angle is finite."""
     for name, d, n in (("dx", dx, shape[1]), ("dy", dy, shape[0])):
-        if not (math.isfinite(n * d) and d > 1e-77):  # (1e-77)⁻⁴ = 1e308, near the largest double
+        if not spacing_fits(n, d):
             raise ValueError(f"{name} = {d:g}: the map's extent ({n} x {name}) or its curvatures (~1/{name}^4) are not "
                              "finite double-precision numbers; give the spacing in a unit in which it is near 1")
     if lay_angle_deg is not None:
