@@ -47,10 +47,6 @@ TANGENTIAL_FORMS = {"incremental": "incremental-end", "incremental-start": "incr
 #: fe beam warns when its discretisation error estimate exceeds this share of the centre
 #: deflection (the convergence band of config.yaml fe.beam.study.convergence)
 MESH_RTOL = 0.01
-#: the largest finite-element model ``fe beam`` builds, in unknowns: (environment variable,
-#: default). A local stand-in for a limit "fe_dofs" of roughcontact.limits.LIMITS (issue 29:
-#: ``--n-x 100000`` went on to build a model of ~3·10⁷ unknowns); 2·10⁶ unknowns of the beam's
-#: strip take minutes and a few GiB to solve.
 
 def add_commands(sub, parents) -> None:
     fe = sub.add_parser("fe", help="finite-element contact: your deck, or the examples of section 9",

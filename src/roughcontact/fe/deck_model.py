@@ -20,12 +20,13 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 import scipy.sparse as sp
 
+from ..limits import describe
 from . import assembly
 from .contact import LawResponse
 from .deck import DeckError
 from .deck_mesh import DeckMesh, face_of
 from .interface_points import InterfacePoints, interface_points
-from .laws import LawFile
+from .laws import LawError, LawFile
 from .mesh import Mesh
 
 __all__ = ["InterfaceLaws", "DeckProblem", "deck_problem", "pressure_forces"]
@@ -110,13 +111,19 @@ class DeckProblem:
         return self.dm.mesh
 
 
+def surface_material(deck, surface: str):
+    """The *MATERIAL (``deck.materials`` entry) of the elements under a contact surface, or None
+    where its faces lie on several materials (E* of eq. (42) is then the law file's to give)."""
+    names = {deck.element_material.get(eid) for eid, _ in deck.surfaces.get(surface, ())}
+    return deck.materials[names.pop()] if len(names) == 1 and None not in names else None
+
+
 def _body_modulus(dm: DeckMesh, surface: str, where: str):
-    deck = dm.deck
-    mats = {deck.element_material[eid] for eid, _ in deck.surfaces[surface]}
-    if len(mats) != 1:
-        raise DeckError(where, f"surface {surface} lies on several materials ({', '.join(sorted(mats))}): give E_star "
+    m = surface_material(dm.deck, surface)
+    if m is None:
+        mats = sorted({str(dm.deck.element_material.get(eid)) for eid, _ in dm.deck.surfaces[surface]})
+        raise DeckError(where, f"surface {surface} lies on several materials ({', '.join(mats)}): give E_star "
                                "in the law file")
-    m = deck.materials[mats.pop()]
     return m.E, m.nu
 
 
@@ -136,7 +143,15 @@ def _interactions(dm: DeckMesh, laws: LawFile):
         law = laws.interactions[pair.interaction]
         block = dm.mesh.interfaces[k]
         one = Mesh(dm.mesh.points, dm.mesh.blocks, {}, {}, (block,), "pair")
-        pts = interface_points(one, "lobatto", law.lay_direction)
+        try:
+            pts = interface_points(one, "lobatto", law.lay_direction)
+        except ValueError as exc:  # the law's axis 1 is the lay projected on the faces: it must have one
+            if "lay direction" not in str(exc):
+                raise
+            raise LawError(f"{laws.where}: interactions.{pair.interaction}.lay_direction: "
+                           f"{describe(list(law.lay_direction))} is normal to a face of the contact pair "
+                           f"{pair.slave}, {pair.master} ({pair.where}): give a direction along the faces "
+                           "(the lay, the moments' x axis)") from None
         if law.E_star is not None:
             E_star = law.E_star
         else:

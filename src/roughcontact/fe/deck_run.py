@@ -31,8 +31,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..interface import friction
-from ..limits import describe
-from .deck_model import DeckProblem
+from .deck_model import DeckProblem, surface_material
 from .laws import LENGTH_UNITS, UNIT_RTOL, LawError
 from .solver import ContactModel, ConvergenceError, NewtonOptions, solve
 
@@ -291,22 +290,6 @@ def run_deck(problem: DeckProblem, options: NewtonOptions | None = None, progres
     return DeckResult(problem, tuple(out), problem.dm.family, time.perf_counter() - t0)
 
 
-def _body_E_star(deck, pair):
-    """E* of a contact pair by eq. (42) (asperity.effective_modulus) from the *ELASTIC of its two
-    surfaces' materials, with the lines that give them; None when a surface spans several
-    materials (the law must then give E_star: deck_model says so)."""
-    from ..asperity import effective_modulus
-
-    mats = []
-    for surface in (pair.slave, pair.master):
-        names = {deck.element_material.get(eid) for eid, _ in deck.surfaces.get(surface, ())}
-        if len(names) != 1 or None in names:
-            return None
-        mats.append(deck.materials[names.pop()])
-    (a, b) = mats
-    return effective_modulus(a.E, a.nu, b.E, b.nu), (a, b)
-
-
 def check_law_file(deck, laws) -> None:
     """A law file checked against the deck it is read for (issue 29); LawError naming the law
     file, the key and both numbers otherwise:
@@ -320,12 +303,14 @@ def check_law_file(deck, laws) -> None:
 
     A law file of mm with a deck of m (or the reverse) otherwise runs with a length scale wrong
     by 10³ and gives closures of the wrong size and even sign (issue 29: −6.0 µm for +1.35 µm)."""
+    from ..asperity import effective_modulus
+
     for pair in deck.contact_pairs:
         law = laws.interactions.get(pair.interaction)
-        own = _body_E_star(deck, pair)
-        if law is None or own is None:
+        a, b = surface_material(deck, pair.slave), surface_material(deck, pair.master)
+        if law is None or a is None or b is None:
             continue  # a missing law, or bodies of several materials: deck_model names them
-        E_deck, (a, b) = own
+        E_deck = effective_modulus(a.E, a.nu, b.E, b.nu)  # eq. (42)
         key = f"{laws.where}: interactions.{pair.interaction}"
         if law.E_star is not None and abs(law.E_star / E_deck - 1.0) > UNIT_RTOL:
             raise LawError(f"{key}.E_star: {law.E_star:.6g} differs by {100 * abs(law.E_star / E_deck - 1):.3g} % from "
@@ -343,29 +328,6 @@ def check_law_file(deck, laws) -> None:
                                "give the deck's length unit (or stress_unit, for bodies this soft or stiff)")
 
 
-def _check_lay_directions(dm, laws) -> None:
-    """Every law's lay direction has a component along its contact faces (the law's axis 1 is
-    its projection); LawError naming the law file and the key otherwise. The faces' frames are
-    built by interface_points as deck_model will build them."""
-    from .interface_points import interface_points
-    from .mesh import Mesh
-
-    for k, pair in enumerate(dm.deck.contact_pairs):
-        law = laws.interactions.get(pair.interaction)
-        if law is None:
-            continue
-        one = Mesh(dm.mesh.points, dm.mesh.blocks, {}, {}, (dm.mesh.interfaces[k],), "pair")
-        try:
-            interface_points(one, "lobatto", law.lay_direction)
-        except ValueError as exc:
-            if "lay direction" not in str(exc):
-                raise
-            raise LawError(f"{laws.where}: interactions.{pair.interaction}.lay_direction: "
-                           f"{describe(list(law.lay_direction))} is normal to a face of the contact pair "
-                           f"{pair.slave}, {pair.master} ({pair.where}): give a direction along the faces "
-                           "(the lay, the moments' x axis)") from None
-
-
 def law_notes(deck, laws) -> list[str]:
     """Notes on a law file read for a deck: a law for an interaction the deck does not define is
     not used (a note, not an error: one law file may serve several decks)."""
@@ -378,7 +340,8 @@ def run_deck_file(deck, laws, family: str = "quadratic", options: NewtonOptions 
     """Read, mesh, assemble and solve: ``deck`` a path or a :class:`~.deck.Deck`, ``laws`` a
     path or a :class:`~.laws.LawFile`. A law file read from a path is checked against the deck
     (:func:`check_law_file`; a LawFile built by the library's examples, whose E* may be chosen
-    apart from the bodies', e.g. ``fe punch --E-star``, is not); every law's lay direction is."""
+    apart from the bodies', e.g. ``fe punch --E-star``, is not); every law's lay direction is, where
+    deck_model builds the interface points."""
     from .deck import Deck, read_deck
     from .deck_mesh import deck_mesh
     from .deck_model import deck_problem
@@ -389,7 +352,5 @@ def run_deck_file(deck, laws, family: str = "quadratic", options: NewtonOptions 
     if not isinstance(laws, LawFile):
         laws = read_law_file(laws)
         check_law_file(deck, laws)
-    dm = deck_mesh(deck, family)
-    _check_lay_directions(dm, laws)
-    result = run_deck(deck_problem(dm, laws), options, progress)
+    result = run_deck(deck_problem(deck_mesh(deck, family), laws), options, progress)
     return DeckResult(result.problem, result.increments, result.family, time.perf_counter() - t0)
