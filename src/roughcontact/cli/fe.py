@@ -48,6 +48,7 @@ TANGENTIAL_FORMS = {"incremental": "incremental-end", "incremental-start": "incr
 #: deflection (the convergence band of config.yaml fe.beam.study.convergence)
 MESH_RTOL = 0.01
 
+
 def add_commands(sub, parents) -> None:
     fe = sub.add_parser("fe", help="finite-element contact: your deck, or the examples of section 9",
                         description="3D finite-element contact through the statistical interface law.")

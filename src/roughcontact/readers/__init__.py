@@ -77,7 +77,7 @@ def _read_npy(file: Path) -> np.ndarray:
         raise ValueError(f"{file}: not a .npy array ({' '.join(str(exc).split())[:200]})") from None
     if len(shape) != 2 or dtype.kind not in "biuf":  # not complex, object, strings, records
         raise ValueError(f"{file}: expected a 2-d numeric map of real numbers, got shape {tuple(shape)} ({dtype})")
-    limits.check_count(min(int(np.prod(shape, dtype=object)), 10 ** 18), "cells",
+    limits.check_count(int(np.prod(shape, dtype=object)), "cells",
                        f"{file}: the array's {shape[0]} x {shape[1]} points")
     size = file.stat().st_size
     if size < offset + shape[0] * shape[1] * dtype.itemsize:

@@ -53,7 +53,7 @@ def read_gsf(path) -> dict:
         return value
 
     nx, ny = count("XRes"), count("YRes")
-    limits.check_count(min(nx * ny, 10 ** 18), "cells", f"{path}: XRes x YRes = {nx} x {ny} points")
+    limits.check_count(nx * ny, "cells", f"{path}: XRes x YRes = {nx} x {ny} points")
     start = end + (4 - end % 4)  # 1 to 4 NUL bytes: the data start at a multiple of 4
     if len(raw) < start + 4 * nx * ny:
         raise ValueError(f"{path}: {len(raw) - start} data bytes where XRes*YRes*4 = {4 * nx * ny}")
