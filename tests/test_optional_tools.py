@@ -132,7 +132,7 @@ def test_every_command_runs_without_the_workflow_extra(tmp_path):
     from roughcontact.cli import build_parser
 
     commands = build_parser()._subparsers._group_actions[0].choices
-    covered = {name.split()[0] for name in COMMANDS} | {"plot"}  # plot draws: below
+    covered = {name.split()[0] for name in COMMANDS} | {"plot", "bem"}  # plot draws, bem needs [bem]: below
     assert set(commands) <= covered, f"add a run of {set(commands) - covered} to COMMANDS"
     path = _height_map(tmp_path)
     outputs = {}
@@ -147,6 +147,10 @@ def test_every_command_runs_without_the_workflow_extra(tmp_path):
     r = _cli(["plot", str(result), "-o", str(tmp_path / "fig.png")], prelude=HIDE_EXTRAS)
     assert r.returncode == 2 and len(r.stderr.strip().splitlines()) == 1, r.stderr[-2000:]
     assert "pip install '.[workflow]'" in r.stderr and not (tmp_path / "fig.png").exists()
+    # `bem` needs the extra [bem] (ContactMechanics, which reads its settings with pyyaml): one line
+    r = _cli(["bem", str(path), "--dx", "0.5", "--E-star", "1.14e5", "--pressure", "1"], prelude=HIDE_EXTRAS)
+    assert r.returncode == 2 and len(r.stderr.strip().splitlines()) == 1, r.stderr[-2000:]
+    assert "skipped: [bem] not installed — pip install '.[bem]'" in r.stderr and r.stdout == ""
 
 
 # matplotlib absent: one line naming the install, tests/plots/test_plots.py::test_without_matplotlib_one_line

@@ -22,7 +22,10 @@ A thin layer: parse and validate the arguments, call the library, print the resu
                          [--law elastic|elastoplastic --psi P] --pressure-range PMIN PMAX
                          [--rtol 1e-3] [--seating-pressure P0] [--moments-unit um] [--length-unit NAME]
                          [--length-scale F] [--stress-scale G] [--mu MU --kt-over-kn A [--kt-at P]]
-                         [-o FILE] [--json]
+                         [-o FILE] [--law-table BEM.json] [--json]
+    roughcontact bem SCAN --E-star E (--pressure P [P ...] | --pressure-range LO HI [--n-pressures N])
+                         [--periodic] [--stress-unit U] [--law-table FILE] [--quiet] [--json]
+                         (and the reading options of moments)
 
 The contact commands (elastic, elastoplastic) take --s, --h (length unit) or --pressure (the
 separation solved, load control); E* as --E-star or --E1 --nu1 [--E2 --nu2] (eq. 42); a second
@@ -282,7 +285,7 @@ def build_parser() -> argparse.ArgumentParser:
     )
     parser.add_argument("--version", action="version", version=f"{PROG} {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
-    from . import contact, fe, measured, moments, plot
+    from . import bem, contact, fe, measured, moments, plot
 
     parents = [_moments_parent(), _output_parent()]
     contact.add_commands(sub, parents)
@@ -290,6 +293,7 @@ def build_parser() -> argparse.ArgumentParser:
     measured.add_commands(sub, parents)
     fe.add_commands(sub, parents)
     plot.add_command(sub, parents[1:])
+    bem.add_command(sub, parents[1:])
     return parser
 
 
