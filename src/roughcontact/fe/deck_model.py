@@ -26,7 +26,7 @@ from .contact import LawResponse
 from .deck import DeckError
 from .deck_mesh import DeckMesh, face_of
 from .interface_points import InterfacePoints, interface_points
-from .laws import LawError, LawFile
+from .laws import LawError, LawFile, mindlin_poisson
 from .mesh import Mesh
 
 __all__ = ["InterfaceLaws", "DeckProblem", "deck_problem", "pressure_forces"]
@@ -127,6 +127,13 @@ def _body_modulus(dm: DeckMesh, surface: str, where: str):
     return m.E, m.nu
 
 
+def _pair_poisson(deck, pair):
+    """ν of Mindlin's ratio for the pair's two bodies (laws.mindlin_poisson), None where a
+    surface lies on several materials."""
+    a, b = surface_material(deck, pair.slave), surface_material(deck, pair.master)
+    return None if a is None or b is None else mindlin_poisson(a.E, a.nu, b.E, b.nu)
+
+
 def _interactions(dm: DeckMesh, laws: LawFile):
     from ..asperity import effective_modulus
 
@@ -157,14 +164,15 @@ def _interactions(dm: DeckMesh, laws: LawFile):
         else:
             E_star = effective_modulus(*_body_modulus(dm, pair.slave, pair.where),
                                        *_body_modulus(dm, pair.master, pair.where))  # eq. (42)
-        key = (pair.interaction, E_star)
+        nu = _pair_poisson(deck, pair)  # for kt_over_kn: mindlin
+        key = (pair.interaction, E_star, nu)
         if key not in E:
-            E[key] = law.material(laws.length_unit, E_star)
+            E[key] = law.material(laws.length_unit, E_star, nu)
         parts.append((E[key], start, start + pts.n_points))
         owner += [pair.interaction] * pts.n_points
         points.append(pts)
         start += pts.n_points
-    E_star = {name: e for name, e in E}
+    E_star = {name: e for name, e, _ in E}
     return _concatenate(points), InterfaceLaws(tuple(parts)), np.array(owner), E_star
 
 

@@ -133,10 +133,12 @@ class DeckResult:
 
     def validity_warnings(self) -> list[str]:
         """The law's model-validity warnings at the largest pressure each interaction reached
-        (contact.at_pressure on that pressure, contact.validity's criteria)."""
+        (contact.at_pressure on that pressure, contact.validity's criteria); none for a BEM law
+        (the law file's ``normal: {table: ...}``), which holds in its table's range."""
         import warnings
 
         from ..contact.at_pressure import contact_at_pressure
+        from ..interface.normal_law import LEVELS
 
         out = []
         p = np.max(np.stack([inc.state[:, friction.T_N] for inc in self.increments]), axis=0)
@@ -144,7 +146,7 @@ class DeckResult:
             name = self.problem.interaction_of_point[a]
             law = material.normal
             p_max = float(p[a:b].max())
-            if not p_max > 0.0:
+            if not p_max > 0.0 or law.table.level not in LEVELS:  # a BEM law: the solver judges its range
                 continue
             kw = ({"E_star": law.table.E_star} if law.table.material is None else {"material": law.table.material})
             with warnings.catch_warnings():

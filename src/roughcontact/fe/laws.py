@@ -30,6 +30,17 @@ springs without slip); ``tangential_form`` (interface.friction.TANGENTIAL_FORMS)
 stating it lifts the deck run's plausibility range of E*, deck_run.check_law_file). Every key
 with its unit: :data:`LAW_KEYS` and docs/own-model.md's table.
 
+The BEM's law (issue 32): ``normal: {table: FILE}`` instead of ``law`` — FILE a load ladder
+written by ``roughcontact bem ... --law-table`` (roughcontact.bem.law_table; relative to the law
+file) — makes p_N(u_N), k_N(u_N) the BEM's (NormalLawTable.from_samples, level "bem"); its
+pressure range is the ladder's, its lengths stay in the table's unit (converted to the deck's
+as the moments' are), its pressures are converted from the table's ``stress_unit`` where it
+states one, and its E* is the law's (a stated ``E_star`` must agree within UNIT_RTOL; the deck
+run compares it with the bodies'). ``moments`` are then optional (default: the table's measured
+ones). ``kt_over_kn: mindlin`` (any friction) is Mindlin's ratio (96) of the moments'
+representative summit ellipse for the bodies' Poisson ratio (:func:`mindlin_poisson`): with a
+BEM law k_T = ratio × k_N(BEM), the ratio being the statistical model's part.
+
 The file is read through :mod:`roughcontact.limits` (a regular UTF-8 file within the size
 limit) as plain YAML: anchors and aliases, a key given twice in a mapping and nesting beyond
 the limit ``nesting`` are refused with the line(s); values are quoted in messages through
@@ -67,8 +78,11 @@ STRESS_UNITS = {"Pa": 1.0, "N/m^2": 1.0, "kPa": 1e3, "MPa": 1e6, "N/mm^2": 1e6, 
 # read by the functions below and listed, with their units, in docs/own-model.md's key table
 # (tests/fe/test_law_file_audit.py checks that every one is there).
 _TOP = {"required": ("length_unit", "interactions"), "optional": ("stress_unit",)}
-_INTERACTION = {"required": ("moments", "lay_direction", "law", "seating_pressure"),
-                "optional": ("E_star", "psi", "yield_strength", "friction", "pressure_range", "tangential_form")}
+_INTERACTION = {"required": ("lay_direction", "seating_pressure"),
+                "optional": ("moments", "law", "normal", "E_star", "psi", "yield_strength", "friction", "pressure_range",
+                             "tangential_form")}
+#: the normal laws: the statistical model's (``law``) and a BEM table's (``normal: {table: FILE}``)
+NORMAL_LAWS = ("elastic", "elastoplastic", "bem")
 _FRICTION = {"coulomb": {"required": ("mu", "kt_over_kn"), "optional": ()},
              "stick": {"required": ("kt_over_kn",), "optional": ()},
              "orthotropic": {"required": ("mu_m", "mu_o", "n_x", "n_y", "kt_over_kn"), "optional": ("nu_x", "nu_y", "k")}}
@@ -78,6 +92,7 @@ def _law_keys() -> tuple[str, ...]:
     top = [*_TOP["required"], *_TOP["optional"]]
     inter = [f"interactions.NAME.{k}" for k in (*_INTERACTION["required"], *_INTERACTION["optional"])]
     moments = [f"interactions.NAME.moments.{k}" for k in (*_MOMENTS, "unit")]
+    moments += ["interactions.NAME.normal.table"]  # bem_law
     fric = [f"interactions.NAME.friction.{kind}.{k}" for kind, keys in _FRICTION.items()
             for k in (*keys["required"], *keys["optional"])]
     return tuple(top + inter + moments + fric)
@@ -120,6 +135,28 @@ def _pair(value, where: str) -> tuple[float, float]:
     return x, x
 
 
+def _kt(value, where: str):
+    """kt_over_kn: one factor, a pair (x, y), or ``mindlin`` (resolved where ν is known)."""
+    return "mindlin" if value == "mindlin" else _pair(value, where)
+
+
+def _kt_yaml(value, fold=False):
+    """kt_over_kn as written: ``mindlin``, a pair, or (``fold``) one value for equal ones."""
+    if isinstance(value, str):
+        return value
+    return value[0] if fold and value[0] == value[1] else list(value)
+
+
+def mindlin_poisson(E1: float, nu1: float, E2: float, nu2: float) -> float:
+    """The Poisson ratio ν of Mindlin's k_N/k_T (96) for two bodies of different materials:
+    both compliances add (interface.tangential's derivation, per body δ_T ∝ [(1−ν)K + νX]/G and
+    δ_N ∝ (1−ν)K/G), so k_N/k_T = 1 + (ν₁/G₁ + ν₂/G₂)/((1−ν₁)/G₁ + (1−ν₂)/G₂) · X/K, which is
+    (96) with ν = (ν₁/G₁ + ν₂/G₂)/(1/G₁ + 1/G₂), G = E/(2(1 + ν)) (Johnson 1985, §7.2); ν₁ for
+    equal materials."""
+    c1, c2 = 2.0 * (1.0 + nu1) / E1, 2.0 * (1.0 + nu2) / E2  # 1/G
+    return (nu1 * c1 + nu2 * c2) / (c1 + c2)
+
+
 def _keys(d, where: str, required=(), optional=()) -> dict:
     if not isinstance(d, dict):
         _fail(where, f"must be a mapping, got {describe(d)}")
@@ -154,7 +191,7 @@ class Coulomb:
     """A constant Coulomb limit μ with tangential springs k_T = kt_over_kn·k_N (section 8.2 with μ_o = 1)."""
 
     mu: float
-    kt_over_kn: tuple[float, float]
+    kt_over_kn: tuple[float, float] | str  # or "mindlin"
 
     def model(self, law_per_deck: float):
         return friction.IsotropicHardening(mu_m=self.mu)
@@ -163,14 +200,14 @@ class Coulomb:
         return self.kt_over_kn
 
     def to_yaml(self):
-        return {"coulomb": {"mu": self.mu, "kt_over_kn": list(self.kt_over_kn)}}
+        return {"coulomb": {"mu": self.mu, "kt_over_kn": _kt_yaml(self.kt_over_kn)}}
 
 
 @dataclass(frozen=True)
 class Stick:
     """Tangential springs k_T = kt_over_kn·k_N without a friction limit (friction.NoSlip)."""
 
-    kt_over_kn: tuple[float, float]
+    kt_over_kn: tuple[float, float] | str  # or "mindlin"
 
     def model(self, law_per_deck: float):
         return friction.NoSlip()
@@ -179,7 +216,7 @@ class Stick:
         return self.kt_over_kn
 
     def to_yaml(self):
-        return {"stick": {"kt_over_kn": list(self.kt_over_kn)}}
+        return {"stick": {"kt_over_kn": _kt_yaml(self.kt_over_kn)}}
 
 
 @dataclass(frozen=True)
@@ -190,7 +227,7 @@ class Orthotropic:
     mu_m: tuple[float, float]
     mu_o: tuple[float, float]
     n: tuple[float, float]
-    kt_over_kn: tuple[float, float]
+    kt_over_kn: tuple[float, float] | str  # or "mindlin"
     k: float = 0.0
     nu: tuple[float, float] | None = None  # ν_x = ν_y as given (k = 0), kept for the file
 
@@ -208,7 +245,7 @@ class Orthotropic:
 
         shape = {"nu_x": self.nu[0], "nu_y": self.nu[1]} if self.nu is not None else {"k": self.k}
         return {"orthotropic": {"mu_m": one(self.mu_m), "mu_o": one(self.mu_o), **shape, "n_x": self.n[0],
-                                "n_y": self.n[1], "kt_over_kn": one(self.kt_over_kn)}}
+                                "n_y": self.n[1], "kt_over_kn": _kt_yaml(self.kt_over_kn, fold=True)}}
 
 
 def _friction(value, where: str):
@@ -220,10 +257,10 @@ def _friction(value, where: str):
     at = f"{where}.{kind}"
     if kind == "coulomb":
         d = _keys(body, at, **_FRICTION["coulomb"])
-        return Coulomb(_number(d["mu"], f"{at}.mu"), _pair(d["kt_over_kn"], f"{at}.kt_over_kn"))
+        return Coulomb(_number(d["mu"], f"{at}.mu"), _kt(d["kt_over_kn"], f"{at}.kt_over_kn"))
     if kind == "stick":
         d = _keys(body, at, **_FRICTION["stick"])
-        return Stick(_pair(d["kt_over_kn"], f"{at}.kt_over_kn"))
+        return Stick(_kt(d["kt_over_kn"], f"{at}.kt_over_kn"))
     if kind == "orthotropic":
         d = _keys(body, at, **_FRICTION["orthotropic"])
         nu = None
@@ -242,7 +279,7 @@ def _friction(value, where: str):
         return Orthotropic(_pair(d["mu_m"], f"{at}.mu_m"), _pair(d["mu_o"], f"{at}.mu_o"),
                            (_number(d["n_x"], f"{at}.n_x", allow_zero=True),
                             _number(d["n_y"], f"{at}.n_y", allow_zero=True)),
-                           _pair(d["kt_over_kn"], f"{at}.kt_over_kn"), k, nu)
+                           _kt(d["kt_over_kn"], f"{at}.kt_over_kn"), k, nu)
     _fail(where, f"unknown friction {describe(kind)} (none, coulomb, orthotropic, stick)")
 
 
@@ -254,7 +291,8 @@ class InteractionLaw:
     """The law of one interaction (module docstring): surface moments in ``moments_unit``, the
     lay direction (deck axes), the normal law (``law``, ``psi`` or ``yield_strength``,
     ``E_star`` or None), the seating pressure, friction, the tabulated range and the reading
-    of the tangential law (93)."""
+    of the tangential law (93). ``law == "bem"``: the normal law is ``table`` (a
+    :class:`.bem_law.TableFile`; moments_unit its length unit, E_star its E*)."""
 
     moments: SpectralMoments
     moments_unit: str
@@ -267,12 +305,18 @@ class InteractionLaw:
     yield_strength: float | None = None
     pressure_range: tuple[float, float] | None = None
     tangential_form: str = "incremental-end"
+    table: object = None  # a bem_law.TableFile
 
     def __post_init__(self):
         if not _named(self.moments_unit, LENGTH_UNITS):
             raise LawError(f"moments unit must be one of {', '.join(LENGTH_UNITS)}, got {describe(self.moments_unit)}")
-        if not _named(self.law, ("elastic", "elastoplastic")):
+        if not _named(self.law, NORMAL_LAWS):
             raise LawError(f"law must be elastic or elastoplastic, got {describe(self.law)}")
+        if (self.law == "bem") != (self.table is not None):
+            raise LawError("a BEM law (normal: {table: FILE}) takes its table, and only it")
+        if self.law == "bem" and (self.psi, self.yield_strength, self.pressure_range) != (None, None, None):
+            raise LawError("psi, yield_strength and pressure_range belong to law: elastic|elastoplastic (a BEM "
+                           "table's range is its ladder's)")
         if self.law == "elastic" and (self.psi is not None or self.yield_strength is not None):
             raise LawError("psi and yield_strength belong to law: elastoplastic")
         if self.law == "elastoplastic" and (self.psi is None) == (self.yield_strength is None):
@@ -284,15 +328,17 @@ class InteractionLaw:
         """Law (moments) length units per deck length unit, e.g. 1000 for µm moments in an mm deck."""
         return 10.0 ** (LENGTH_UNITS[length_unit] - LENGTH_UNITS[self.moments_unit])
 
-    def material(self, length_unit: str, E_star: float):
-        """The engine's :class:`~.contact.InterfaceMaterial` (E_star: this law's, or the bodies');
+    def material(self, length_unit: str, E_star: float, nu: float | None = None):
+        """The engine's :class:`~.contact.InterfaceMaterial` (E_star: this law's, or the bodies';
+        nu: the bodies' Poisson ratio for ``kt_over_kn: mindlin``, :func:`mindlin_poisson`);
         its table is built once per surface, law, E* and range in a process."""
-        return _material(self, length_unit, float(E_star))
+        return _material(self, length_unit, float(E_star), nu)
 
     def to_yaml(self) -> dict:
         """The law as the mapping of the law file."""
+        normal = {"law": self.law} if self.table is None else {"normal": {"table": self.table.file}}
         out = {"moments": {**{m: float(getattr(self.moments, m)) for m in _MOMENTS}, "unit": self.moments_unit},
-               "lay_direction": list(self.lay_direction), "law": self.law,
+               "lay_direction": list(self.lay_direction), **normal,
                "seating_pressure": self.seating_pressure, "friction": self.friction.to_yaml()}
         for key in ("E_star", "psi", "yield_strength"):
             if getattr(self, key) is not None:
@@ -314,15 +360,16 @@ def _table(moments, level: str, normal, pressure_range):
     return NormalLawTable.build(moments, level, pressure_range=pressure_range, accuracy="plot", validity="off", **kw)
 
 
-def _material(law: InteractionLaw, length_unit: str, E_star: float):
+def _material(law: InteractionLaw, length_unit: str, E_star: float, nu=None):
     """:meth:`InteractionLaw.material`: the normal law tabulated and put in its reference state
     at the seating pressure, k_T = kt_over_kn · k_N (Mindlin's ratio (96) of the representative
     summit ellipse where the friction gives none: :func:`.contact.statistical_interface`'s rule)."""
     from ..contact import resolve_material
-    from ..interface import InterfaceLaw, mindlin_kT_over_kN
-    from ..interface.tangential import representative_aspect
-    from .contact import InterfaceMaterial
 
+    if law.law == "bem":
+        from .bem_law import bem_material
+
+        return bem_material(law, length_unit, E_star, _tangential_factors(law, nu))
     if law.law == "elastic":
         normal = E_star
     else:
@@ -339,7 +386,29 @@ def _material(law: InteractionLaw, length_unit: str, E_star: float):
         raise LawError(f"the normal law cannot be tabulated over the pressures {p_range[0]:g} ... {p_range[1]:g} "
                        f"with E* = {E_star:g} ({exc}): check E_star and the stress unit, or give a "
                        "pressure_range the law reaches") from None
-    factors = law.friction.factors() or mindlin_kT_over_kN(representative_aspect(law.moments), 0.25)
+    return _interface_material(law, length_unit, table, _tangential_factors(law, nu))
+
+
+def _tangential_factors(law: InteractionLaw, nu):
+    """(k_Tx/k_N, k_Ty/k_N): the friction's factors, or Mindlin's ratio (96) of the representative
+    summit ellipse (interface.tangential.representative_aspect) for ``kt_over_kn: mindlin`` (with
+    the bodies' ν) and where the friction gives none (ν = 1/4: k_T is not used then)."""
+    from ..interface import mindlin_kT_over_kN
+    from ..interface.tangential import representative_aspect
+
+    factors = law.friction.factors()
+    if factors == "mindlin":
+        if nu is None:
+            raise LawError("kt_over_kn: mindlin needs the bodies' Poisson ratio: put each contact surface on one "
+                           "material of the deck, or give the factor")
+        return mindlin_kT_over_kN(representative_aspect(law.moments), nu)
+    return factors or mindlin_kT_over_kN(representative_aspect(law.moments), 0.25)
+
+
+def _interface_material(law: InteractionLaw, length_unit: str, table, factors):
+    from ..interface import InterfaceLaw
+    from .contact import InterfaceMaterial
+
     per = law.law_per_deck(length_unit)
     return InterfaceMaterial(InterfaceLaw.from_pressure(table, law.seating_pressure, factors),
                              law.friction.model(per), length_per_mm=per, tangential_form=law.tangential_form)
@@ -367,9 +436,20 @@ def _moments(value, where: str, base: Path | None):
         _fail(where, f"invalid moments: {exc}")
 
 
-def _interaction(d, where: str, base: Path | None) -> InteractionLaw:
+def _interaction(d, where: str, base: Path | None, length_unit: str = "mm") -> InteractionLaw:
     d = _keys(d, where, **_INTERACTION)
-    moments, unit = _moments(d["moments"], f"{where}.moments", base)
+    if ("law" in d) == ("normal" in d):
+        _fail(where, "give law: elastic|elastoplastic (with moments) or normal: {table: FILE} (a BEM law), one of them")
+    if "law" in d and "moments" not in d:
+        _fail(where, "missing key 'moments'")
+    moments = _moments(d["moments"], f"{where}.moments", base) if "moments" in d else None
+    table = None
+    if "normal" in d:
+        from .bem_law import bem_table
+
+        table, surface, unit, E_table = bem_table(d["normal"], f"{where}.normal", base, length_unit, moments)
+        moments = (surface, unit)
+    moments, unit = moments
     lay = d["lay_direction"]
     if not isinstance(lay, (list, tuple)) or len(lay) != 3:
         _fail(f"{where}.lay_direction", f"must be a vector [x, y, z], got {describe(lay)}")
@@ -390,8 +470,14 @@ def _interaction(d, where: str, base: Path | None) -> InteractionLaw:
         opt["pressure_range"] = (lo, hi)
     if "tangential_form" in d:
         opt["tangential_form"] = d["tangential_form"]
+    if table is not None:
+        if "E_star" in opt and abs(opt["E_star"] / E_table - 1.0) > UNIT_RTOL:
+            _fail(f"{where}.E_star", f"{opt['E_star']:g} differs from the BEM table's E* = {E_table:g} ({table.file}, "
+                                     f"in the deck's stress unit) by more than {100 * UNIT_RTOL:g} %")
+        opt.update(E_star=E_table, table=table)
     try:
-        return InteractionLaw(moments, unit, lay, d["law"], _number(d["seating_pressure"], f"{where}.seating_pressure"),
+        return InteractionLaw(moments, unit, lay, d.get("law", "bem"),
+                              _number(d["seating_pressure"], f"{where}.seating_pressure"),
                               _friction(d.get("friction", "none"), f"{where}.friction"), **opt)
     except LawError as exc:
         if str(exc).startswith(where):
@@ -455,7 +541,7 @@ def law_file_from_dict(data, where: str = "law file", base: Path | None = None) 
         key = str(name).upper()
         if key in laws:
             _fail(f"{where}: interactions", f"{describe(name)} is given twice (names are case-insensitive)")
-        laws[key] = _interaction(body, f"{where}: interactions.{name}", base)
+        laws[key] = _interaction(body, f"{where}: interactions.{name}", base, d["length_unit"])
     return LawFile(d["length_unit"], laws, stress_unit, where)
 
 

@@ -12,7 +12,8 @@ Conventions
   c = 0 at p = p0, the state in which the FE model starts) or the mean planes
   (``reference="mean-plane"``, h_ref = 0, c = −h);
 * the law p(c) is W/A0 of the elastic (53) or elasto-plastic (82) model at h = h_ref − c,
-  evaluated through :class:`~roughcontact.interface.NormalLawTable` built to rtol/100;
+  evaluated through :class:`~roughcontact.interface.NormalLawTable` built to rtol/100 — or
+  any NormalLawTable given (``law=``: a BEM law, whose own stated error then adds to rtol);
 * rows: the first at exactly zero pressure, at c_0 = c_min − p_min/k_N(c_min) (the tangent at
   the light end p_min reaches zero there: the table continues the law with its stiffness);
   then p_min … p_max. Between consecutive rows from p_min on, the relative error
@@ -169,20 +170,26 @@ def _relative_error(law, h_ref, c0, c1, p0, p1) -> float:
     return float(np.max(np.abs(linear / exact - 1.0)))
 
 
-def overclosure_table(surface: SpectralMoments, *, pressure_range, E_star=None,
+def overclosure_table(surface: SpectralMoments | None, *, pressure_range, E_star=None,
                       material: AsperityMaterial | None = None, rtol=1e-3, reference="seating",
-                      seating_pressure=None, hertz="exact", max_rows=None) -> OverclosureTable:
+                      seating_pressure=None, hertz="exact", max_rows=None,
+                      law: NormalLawTable | None = None) -> OverclosureTable:
     """Choose the rows of a pressure–overclosure table (module docstring).
 
     surface : the five moments (length unit L); E_star (elastic law) or material
         (elasto-plastic law, :class:`~roughcontact.asperity.AsperityMaterial`).
+    law : instead of the three, a NormalLawTable already made (e.g. a BEM law,
+        NormalLawTable.from_samples): the rows follow it, within its own range and error.
     pressure_range : (p_min, p_max) [unit of E*], 0 < p_min < p_max: the range in which the
         table is within rtol of the law. rtol in [1e-5, 0.1].
     reference : "seating" (give seating_pressure p0 within the range: c = 0 there) or
         "mean-plane" (c = −h).
     max_rows : ValueError if more rows are needed (e.g. CALCULIX_MAX_ROWS for CalculiX).
     """
-    instance("surface", surface, SpectralMoments)
+    if law is None:
+        instance("surface", surface, SpectralMoments)
+    elif surface is not None or E_star is not None or material is not None:
+        raise ValueError("give either law or surface with E_star or material, not both")
     choice("reference", reference, REFERENCES)
     rtol = float(rtol)
     if not (1e-5 <= rtol <= 0.1):
@@ -193,11 +200,14 @@ def overclosure_table(surface: SpectralMoments, *, pressure_range, E_star=None,
         raise ValueError(f"pressure_range must be two numbers, got {pressure_range!r}") from None
     if not (0.0 < p_min < p_max and math.isfinite(p_max)):
         raise ValueError(f"pressure_range must satisfy 0 < p_min < p_max, got {pressure_range!r}")
-    if (E_star is None) == (material is None):
+    if law is not None:
+        instance("law", law, NormalLawTable)
+    elif (E_star is None) == (material is None):
         raise ValueError("give exactly one of E_star (elastic law) and material (elasto-plastic law)")
-    law = NormalLawTable.build(
-        surface, "elastic" if material is None else "elastoplastic", E_star=E_star, material=material,
-        hertz=hertz, pressure_range=(p_min, p_max), rtol=max(rtol / 100.0, 1e-7))
+    else:
+        law = NormalLawTable.build(
+            surface, "elastic" if material is None else "elastoplastic", E_star=E_star, material=material,
+            hertz=hertz, pressure_range=(p_min, p_max), rtol=max(rtol / 100.0, 1e-7))
     if reference == "seating":
         if seating_pressure is None:
             raise ValueError("reference 'seating' needs the seating pressure p0")

@@ -17,7 +17,8 @@ of the flat from the mean plane [L, the length unit of the moments]:
   E17) (:func:`roughcontact.contact.elastoplastic.elastoplastic_contact`).
 
 Both come from the production integrators ("direct integration" below), W/A0 in the unit of
-E*, K/A0 in that unit per L. A :class:`NormalLawTable` is built once per (surface, level,
+E*, K/A0 in that unit per L. :meth:`NormalLawTable.from_samples` puts the nodes at given
+samples instead (a BEM load ladder, level "bem"; :mod:`.normal_law_samples`). A :class:`NormalLawTable` is built once per (surface, level,
 E* or material, Hertz option) over a stated pressure (or separation) range; the FE loop only
 evaluates it — it never integrates.
 
@@ -279,6 +280,15 @@ class NormalLawTable:
                    material=material, accuracy=accuracy, rtol=rtol, max_error_pressure=err_p,
                    max_error_stiffness=err_k, n_evaluations=direct.count)
 
+    @classmethod
+    def from_samples(cls, h, p, k, *, surface, E_star, level="bem") -> "NormalLawTable":
+        """The table through samples of a law (a BEM load ladder: h = ḡ [L], p = W/A0, k = K/A0)
+        instead of the integrators, with an estimated (not enforced) error and the same tails:
+        :func:`roughcontact.interface.normal_law_samples.sampled_table`."""
+        from .normal_law_samples import sampled_table
+
+        return sampled_table(cls, h, p, k, surface=surface, E_star=E_star, level=level)
+
     # -- properties ----------------------------------------------------------------------------
     @property
     def kernel_table(self) -> np.ndarray:
@@ -364,7 +374,9 @@ class NormalLawTable:
 
     def direct(self, h):
         """(W/A0, K/A0) at separations h [L] by direct (production) integration, the reference
-        of the interpolation error."""
+        of the interpolation error (a sampled table, :meth:`from_samples`, has none: ValueError)."""
+        if self.level not in LEVELS:
+            raise ValueError(f"a table of {self.level} samples has no direct integration")
         d = _DirectIntegration(self.surface, self.level, self.E_star, self.material, self.hertz, self.accuracy)
         return d(_finite_array("h", h).reshape(-1))
 
