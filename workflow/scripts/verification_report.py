@@ -40,8 +40,10 @@ def _bem_section(files):
     """paper_figures/bem.md without its title, or how to compute it (target bem, not in all)."""
     if not files:
         return ("Not computed in this run: `snakemake bem` (needs the extra `[bem]`, "
-                "`pip install '.[bem]'`; about 30 min on 2 cores) compares the model with a boundary-element "
-                "solution on surfaces with the same moments and states here where the model holds.\n")
+                "`pip install '.[bem]'`; about 20 min on 2 cores) compares the model with a boundary-element "
+                "solution on surfaces with the same moments and states here where the model holds: the area, "
+                "the law an FE model uses (gap and stiffness against the grid-converged BEM) and, with a "
+                "hardness cap, the elasto-plastic model.\n")
     return _calculix_section(files[0])
 
 
@@ -69,7 +71,7 @@ def run(checks_files, speed, fe_speed, calculix, expected, errata, scene_titles,
             checks, errata=errata_list, provenance=provenance, scene_titles=scene_titles,
             sections={"Speed against error": _speed_section(speed), "FE speed and size": _fe_section(fe_speed),
                       "CalculiX cross-check (optional scene calculix, tool ccx)": _calculix_section(calculix),
-                      "Where the model holds: the BEM comparison (optional target bem)":
+                      "Where the model and its law hold: the BEM comparison (optional target bem)":
                           _bem_section([f for f in bem if f.endswith(".md")])},
             summary=summary))
         io.write_text(out["csv"], verify.checks_to_csv(checks))

@@ -11,6 +11,12 @@ the separation is defined):
   isotropic surfaces, against √(2π) of the asperity theories at vanishing load);
 * K/A0 = −d(W/A0)/dh — the model's (55) against −dp/dḡ of the BEM's load ladder (second-order
   differences of ln p over ḡ, numpy.gradient).
+
+The BEM's own discretisation error is estimated from the same surface on grids refined by a
+constant factor (:func:`richardson`: Richardson extrapolation with the observed order, Roache
+1998, "Verification and Validation in Computational Science and Engineering", ch. 5).
+:func:`holding_ranges` also states where the model's gap and stiffness are within a tolerance
+of the BEM's (``ratio`` = model/BEM of any quantity).
 """
 
 from __future__ import annotations
@@ -21,11 +27,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..asperity import AsperityMaterial
+from ..asperity.laws import yield_strength_for_plasticity_index
 from ..contact.at_pressure import contact_at_pressure
 from ..statistics.surface import SpectralMoments
 
 __all__ = ["ModelAtPressures", "model_at_pressures", "ladder_stiffness", "kappa", "seed_mean",
-           "holding_ranges", "HoldingRange"]
+           "holding_ranges", "HoldingRange", "Extrapolation", "richardson", "plastic_material"]
 
 
 @dataclass(frozen=True)
@@ -52,15 +60,26 @@ def model_at_pressures(moments: SpectralMoments, pressures, E_star: float) -> Mo
 
 def ladder_stiffness(pressure, mean_gap) -> np.ndarray:
     """K/A0 = −dp/dḡ [unit of p per unit of ḡ] along a load ladder: −p · d ln p/dḡ by second-order
-    differences over the (non-uniform) gaps, one-sided at the ends. ln p is nearly linear in ḡ
-    (Persson 2007, PRL 99, 125502), so this is accurate to a few % for ladders of factor ≤ 2.5."""
+    differences over the (non-uniform) gaps, second-order one-sided at the ends (numpy.gradient,
+    edge_order=2). ln p is nearly linear in ḡ (Persson 2007, PRL 99, 125502), so this is accurate
+    to a few % for ladders of factor ≤ 2.5 (the ends less so than the interior)."""
     p = np.asarray(pressure, dtype=float)
     g = np.asarray(mean_gap, dtype=float)
     if p.shape != g.shape or p.ndim != 1 or p.size < 3:
         raise ValueError("pressure and mean_gap must be 1-d arrays of the same length >= 3")
     if np.any(np.diff(g) >= 0):
         raise ValueError("the mean gap must fall as the pressure rises along the ladder")
-    return -p * np.gradient(np.log(p), g)
+    return -p * np.gradient(np.log(p), g, edge_order=2)
+
+
+def plastic_material(moments: SpectralMoments, E_star: float, psi: float, yield_coefficient: float = 1.62
+                     ) -> AsperityMaterial:
+    """The material whose plasticity index (asperity.laws.plasticity_index) on ``moments`` is ψ:
+    Y from ψ at K_Y = ``yield_coefficient`` (the closure of Figs 5–8), Tabor's H = Y/0.354 (68),
+    the paper's c_h = 0.967 and ω_p/ω_c = 45. The BEM's cap for it is c_h H, the mean pressure
+    (66) of a fully plastic contact (paper.bem_plastic)."""
+    Y = yield_strength_for_plasticity_index(psi, moments, E_star, yield_coefficient)
+    return AsperityMaterial(E_star, Y, yield_coefficient=yield_coefficient)
 
 
 def kappa(area_fraction, pressure, E_star: float, moments: SpectralMoments):
@@ -93,8 +112,9 @@ class HoldingRange:
 
 
 def holding_ranges(pressure, ratio, bem_area, tolerance: float) -> list[HoldingRange]:
-    """The contiguous runs of the ladder where the model's area is within ``tolerance`` of the
-    BEM's (ratio = A_model/A_BEM); empty if none."""
+    """The contiguous runs of the ladder where the model is within ``tolerance`` of the BEM
+    (ratio = model/BEM: A_model/A_BEM, or of the gap or stiffness; ``bem_area`` the BEM's A/A0
+    there, to say where on the area scale the run lies); empty if none."""
     p, r, a = (np.asarray(x, dtype=float) for x in (pressure, ratio, bem_area))
     ok = np.abs(r - 1.0) <= tolerance
     out, i = [], 0
@@ -109,3 +129,45 @@ def holding_ranges(pressure, ratio, bem_area, tolerance: float) -> list[HoldingR
         else:
             i += 1
     return out
+
+
+@dataclass(frozen=True)
+class Extrapolation:
+    """The continuum estimate of a quantity from three grids refined by a constant factor r
+    (arrays over the pressures, in the quantity's unit).
+
+    value : the estimate — Richardson's where ``extrapolated``, else the finest grid's value;
+    finest : the finest grid's value; order : the observed order p (nan where the three values
+    are not monotone); extrapolated : where the convergence is monotone with p ≥ min_order;
+    error : the finest grid's estimated relative discretisation error |finest − value|/|value|
+    where extrapolated, else the last refinement's change |finest − medium|/|finest| (a bound
+    that assumes nothing about the order)."""
+
+    value: np.ndarray
+    finest: np.ndarray
+    order: np.ndarray
+    extrapolated: np.ndarray
+    error: np.ndarray
+
+
+def richardson(coarse, medium, fine, ratio: float = 2.0, min_order: float = 0.5) -> Extrapolation:
+    """Richardson extrapolation with the observed order of f on grids h, h/r, h/r² (Roache 1998,
+    ch. 5; Celik et al. 2008, J. Fluids Eng. 130, 078001): p = ln((f1 − f2)/(f2 − f3))/ln r and f∞ = f3 + (f3 − f2)/(r^p − 1),
+    element-wise over the pressures. Where f1 − f2 and f2 − f3 differ in sign (oscillatory or
+    converged to round-off) or p < ``min_order`` (the correction would exceed the last change
+    many times over), no extrapolation: the finest value, flagged."""
+    f1, f2, f3 = (np.atleast_1d(np.asarray(x, dtype=float)) for x in (coarse, medium, fine))
+    if not f1.shape == f2.shape == f3.shape:
+        raise ValueError(f"the three grids' values must have one shape, got {f1.shape}, {f2.shape}, {f3.shape}")
+    if not (np.all(np.isfinite(f1)) and np.all(np.isfinite(f2)) and np.all(np.isfinite(f3))):
+        raise ValueError("the three grids' values must be finite")
+    ratio, min_order = float(ratio), float(min_order)
+    if not ratio > 1.0 or not min_order > 0.0:
+        raise ValueError(f"ratio must exceed 1 and min_order be positive, got {ratio!r}, {min_order!r}")
+    d12, d23 = f1 - f2, f2 - f3
+    with np.errstate(divide="ignore", invalid="ignore"):
+        order = np.where(d12 * d23 > 0, np.log(d12 / d23) / math.log(ratio), np.nan)
+        ok = np.isfinite(order) & (order >= min_order)
+        value = np.where(ok, f3 + (f3 - f2) / (ratio ** np.where(ok, order, 1.0) - 1.0), f3)
+        error = np.where(ok, np.abs(f3 - value) / np.abs(value), np.abs(d23) / np.abs(f3))
+    return Extrapolation(value=value, finest=f3, order=order, extrapolated=ok, error=error)

@@ -17,7 +17,7 @@ from ..statistics.surface import SpectralMoments
 from ..plots import style
 from .verify import NOT_REPRODUCED, REPRODUCED, Check, relative_error
 
-__all__ = ["SUMMARY_COLUMNS", "summary_rows", "summary_dataset", "resolution_rows", "summit_rows", "check_rows", "figure", "render_markdown",
+__all__ = ["SUMMARY_COLUMNS", "group_runs", "summary_rows", "summary_dataset", "resolution_rows", "summit_rows", "check_rows", "figure", "render_markdown",
            "TOLERANCES"]
 
 SCENE = "bem"
@@ -28,15 +28,20 @@ SUMMARY_COLUMNS = ("family", "alpha", "N", "seeds", "px_per_shortest_wavelength"
                    "s_BGK", "kappa_BEM", "kappa_BGK", "K_BEM", "K_BGK", "iterations", "solve_seconds")
 
 
+def group_runs(runs: Sequence[Mapping], families: Mapping) -> list[tuple[tuple[str, int], list]]:
+    """[((family, N), [run, ...]), ...] in the families' order, then by N."""
+    groups = defaultdict(list)
+    for r in runs:
+        groups[(r["family"], int(r["n"]))].append(r)
+    return sorted(groups.items(), key=lambda kv: (list(families).index(kv[0][0]), kv[0][1]))
+
+
 def summary_rows(runs: Sequence[Mapping], families: Mapping[str, SpectralMoments], E_star: float,
                  k_high: float) -> list[dict]:
     """One row per (family, N, W/A0) from the runs (each {family, n, seed, pressure, area_fraction,
     mean_gap, iterations, solve_time}); A_ratio = A_BEM/A_BGK, its sem over the seeds' ratios."""
-    groups = defaultdict(list)
-    for r in runs:
-        groups[(r["family"], int(r["n"]))].append(r)
     rows = []
-    for (fam, n), rs in sorted(groups.items(), key=lambda kv: (list(families).index(kv[0][0]), kv[0][1])):
+    for (fam, n), rs in group_runs(runs, families):
         m = families[fam]
         p = np.asarray(rs[0]["pressure"], dtype=float)
         for r in rs:
