@@ -20,7 +20,7 @@ import warnings
 from typing import Any
 
 from . import CLIError, _real, output_file
-from .moments import DETRENDS, _json_safe, _map_in_unit
+from .moments import DETRENDS, _json_safe, _map_in_unit, add_map_options
 
 __all__ = ["add_command"]
 
@@ -57,19 +57,7 @@ def add_command(sub, parents) -> None:
                    help="write the ladder as a BEM law table (JSON) for LAW.yaml's normal: {table: FILE} and "
                    "export --law-table; use a dense ladder (--pressure-range)")
     p.add_argument("--quiet", action="store_true", help="no progress lines on stderr")
-    # the reading options of `moments` (same names and meaning: cli/moments.py)
-    p.add_argument("--unit", "--length-unit", dest="unit", default="um", metavar="UNIT",
-                   help="length unit of the output (gaps, moments, stiffness per unit) and of the map (default um)")
-    p.add_argument("--dx", type=_real, default=None, metavar="DX",
-                   help="sampling interval along x (in --xy-unit if given, else --unit); needed when the file has none")
-    p.add_argument("--dy", type=_real, default=None, metavar="DY", help="sampling interval along y (default dx)")
-    p.add_argument("--xy-unit", dest="xy_unit", default=None, metavar="UNIT", help="unit of --dx and of the file's "
-                   "lateral coordinates that state none")
-    p.add_argument("--z-unit", dest="z_unit", default=None, metavar="UNIT", help="unit of the heights (default: the "
-                   "file's, else the lateral unit)")
-    p.add_argument("--z-scale", dest="z_scale", type=_real, default=1.0, metavar="F", help="multiply the heights by F")
-    p.add_argument("--layout", choices=("auto", "grid", "xyz"), default="auto", help="text files: grid or x y z points")
-    p.add_argument("--channel", type=int, default=None, metavar="N", help="data channel of an instrument file")
+    add_map_options(p)  # the reading options of `moments` (same names and meaning)
     p.add_argument("--detrend", choices=DETRENDS, default=None,
                    help="the form removed before the BEM and the moments (default: plane; with --periodic the mean, "
                    "since a plane taken from a periodic cell would put a step at its edges)")

@@ -11,7 +11,7 @@ from typing import Any
 
 from . import CLIError, _MOMENTS, _real, output_file, writing
 
-__all__ = ["add_command"]
+__all__ = ["add_command", "add_map_options"]
 
 ESTIMATORS = ("fd", "spectral")  # statistics.measure.ESTIMATORS (checked by the tests)
 DETRENDS = ("plane", "mean", "none", "poly2", "poly3", "poly4", "sphere")  # statistics.measure.DETRENDS (tested)
@@ -29,22 +29,7 @@ def add_command(sub, parents) -> None:
         "datx, plu, gwy, ...) need the measure extra (SurfaceTopography).")
     p.add_argument("file", help="height map: .npy, text grid or x y z points (.csv .txt .dat .asc .xyz), .gsf, "
                    "or an instrument file (SurfaceTopography)")
-    p.add_argument("--unit", "--length-unit", dest="unit", default="um", metavar="UNIT",
-                   help="length unit of the output moments and of the map (default um)")
-    p.add_argument("--dx", type=_real, default=None, metavar="DX",
-                   help="sampling interval along x (columns), in --xy-unit if given, else in --unit; needed when "
-                   "the file has none (overrides the file's)")
-    p.add_argument("--dy", type=_real, default=None, metavar="DY", help="sampling interval along y (rows) (default dx)")
-    p.add_argument("--xy-unit", dest="xy_unit", default=None, metavar="UNIT",
-                   help="unit of --dx and of a file's lateral coordinates that state none (default: the file's, "
-                   "else --unit)")
-    p.add_argument("--z-unit", dest="z_unit", default=None, metavar="UNIT",
-                   help="unit of the heights (default: the file's, else the lateral unit)")
-    p.add_argument("--z-scale", dest="z_scale", type=_real, default=1.0, metavar="F",
-                   help="multiply the heights by F before the unit conversion (default 1)")
-    p.add_argument("--layout", choices=("auto", "grid", "xyz"), default="auto",
-                   help="text files: a grid (one map row per line) or x y z points (default: detected)")
-    p.add_argument("--channel", type=int, default=None, metavar="N", help="data channel of an instrument file")
+    add_map_options(p)
     p.add_argument("--estimator", choices=ESTIMATORS, default="fd",
                    help="fd (derivative fields of the window, default) or spectral (periodogram; periodic maps)")
     p.add_argument("--order", type=int, choices=(2, 4, 6, 8), default=6, help="accuracy order of the fd stencils (default 6)")
@@ -65,6 +50,26 @@ def add_command(sub, parents) -> None:
     p.add_argument("--plot", type=output_file, default=None, metavar="FILE.png",
                    help="draw the moments against the sampling interval, with their uncertainties (png or pdf)")
     p.set_defaults(func=_run_moments, render=_render_moments)
+
+
+def add_map_options(p) -> None:
+    """The options that say how a height map is read (``moments`` and ``bem`` share them)."""
+    p.add_argument("--unit", "--length-unit", dest="unit", default="um", metavar="UNIT",
+                   help="length unit of the output and of the map (default um)")
+    p.add_argument("--dx", type=_real, default=None, metavar="DX",
+                   help="sampling interval along x (columns), in --xy-unit if given, else in --unit; needed when "
+                   "the file has none (overrides the file's)")
+    p.add_argument("--dy", type=_real, default=None, metavar="DY", help="sampling interval along y (rows) (default dx)")
+    p.add_argument("--xy-unit", dest="xy_unit", default=None, metavar="UNIT",
+                   help="unit of --dx and of a file's lateral coordinates that state none (default: the file's, "
+                   "else --unit)")
+    p.add_argument("--z-unit", dest="z_unit", default=None, metavar="UNIT",
+                   help="unit of the heights (default: the file's, else the lateral unit)")
+    p.add_argument("--z-scale", dest="z_scale", type=_real, default=1.0, metavar="F",
+                   help="multiply the heights by F before the unit conversion (default 1)")
+    p.add_argument("--layout", choices=("auto", "grid", "xyz"), default="auto",
+                   help="text files: a grid (one map row per line) or x y z points (default: detected)")
+    p.add_argument("--channel", type=int, default=None, metavar="N", help="data channel of an instrument file")
 
 
 def _map_in_unit(args):
