@@ -26,6 +26,7 @@ from scipy import sparse
 from threadpoolctl import threadpool_limits
 
 from .element import Element
+from . import quadrature
 from .quadrature import Rule, tensor_rule
 
 __all__ = [
@@ -60,10 +61,11 @@ def isotropic_elasticity(E: float, nu: float) -> np.ndarray:
 
 
 def default_rule(element: Element) -> Rule:
-    """Gauss–Legendre tensor rule with degree + 1 points per direction of ``element``: exact
-    for the stiffness (products of gradients) of affine cells, and for N_a × (a traction linear
-    in the face coordinates) on parallelogram faces."""
-    return tensor_rule("gauss", tuple(d + 1 for d in element.degree))
+    """The element's rule (quadrature.element_rule): Gauss–Legendre with degree + 1 points per
+    direction on the cube — exact for the stiffness (products of gradients) of affine cells and for
+    N_a × (a traction linear in the face coordinates) on parallelogram faces — and the simplex
+    rules of the same exactness on tetrahedra and triangles."""
+    return quadrature.element_rule(element)
 
 
 def _jacobian_checked(J: np.ndarray) -> np.ndarray:

@@ -21,6 +21,12 @@ face it was made on is in it (a node set of a whole plane keeps its plane); a re
 node leaves the engine, and its displacement is reported by the cubic edge through its four
 nodes (:attr:`DeckMesh.replaced`).
 
+Tetrahedra: every C3D10 is a TET10 (the node orders agree, :mod:`.element`); its faces S1-S4
+are TRI6 (6-node triangles) and need no transition element: the 12-node interface elements
+join them directly (:data:`~.interface_element.INTERFACE12`). A contact pair must have the same
+kind of faces on both sides: C3D10 on one side and C3D20 on the other is refused, naming the
+pair.
+
 Contact pairs: the master surface's faces are side A of the interface elements (normal from
 master to slave), the slave's side B; every slave node must sit on a master node within
 ``rtol`` × the shortest edge of the contact faces, and every slave face on a master face
@@ -38,15 +44,17 @@ import numpy as np
 
 from ..limits import describe
 from .deck import Deck, DeckError
-from .element import HEX20, HEX21, HEX28, Element
-from .interface_element import INTERFACE18, INTERFACE32
+from .element import HEX20, HEX21, HEX28, TET10, TET10_FACES, TRI6, Element
+from .interface_element import INTERFACE12, INTERFACE18, INTERFACE32
 from .mesh import CellBlock, InterfaceBlock, Mesh, local_face
-from .quadrature import tensor_rule
+from .quadrature import simplex_rule, tensor_rule
 
 __all__ = ["DeckMesh", "deck_mesh", "FACES", "FAMILIES", "face_of"]
 
 FAMILIES = {"quadratic": HEX21, "cubic": HEX28}
-_INTERFACE = {HEX21.name: INTERFACE18, HEX28.name: INTERFACE32}
+_INTERFACE = {HEX21.name: INTERFACE18, HEX28.name: INTERFACE32, TET10.name: INTERFACE12}
+#: deck element types read as the 10-node tetrahedron (the rest are hexahedra, deck.ELEMENT_TYPES)
+TET_TYPES = {"C3D10": 10}
 #: CalculiX/Abaqus faces S1 … S6 of a hexahedron as (reference axis, side): S1 ζ = −1 (nodes 1-4),
 #: S2 ζ = +1 (5-8), S3 η = −1 (1, 5, 6, 2), S4 ξ = +1 (2, 6, 7, 3), S5 η = +1 (3, 7, 8, 4), S6 ξ = −1
 FACES = {1: (2, -1), 2: (2, 1), 3: (1, -1), 4: (0, 1), 5: (1, 1), 6: (0, -1)}
@@ -114,7 +122,11 @@ def _template(transition: Element) -> tuple:
 
 def face_of(element: Element, rotation: int, face: int):
     """The face element and local node indices (outward order) of deck face S``face`` of an
-    element turned by ``ROTATIONS[rotation]``."""
+    element turned by ``ROTATIONS[rotation]`` (a TET10 is never turned: S1-S4 of TET10_FACES)."""
+    if element is TET10:
+        if face not in TET10_FACES:
+            raise ValueError(f"a C3D10 has faces S1-S4, got S{describe(face)}")
+        return TRI6, TET10_FACES[face]
     n = ROTATIONS[rotation] @ _normal(face)
     axis = int(np.flatnonzero(np.abs(n) > 0.5)[0])
     return local_face(element, axis, int(np.sign(n[axis])))
@@ -151,25 +163,46 @@ class DeckMesh:
         return np.where(self.deck_nodes[idx] == ids, idx, -1)
 
 
+def _is_tet(deck: Deck) -> np.ndarray:
+    """(M,) True for the deck's C3D10 elements."""
+    return np.array([t.upper() in TET_TYPES for t in deck.element_types], dtype=bool)
+
+
+def _connectivity(deck: Deck, rows: np.ndarray, n: int) -> np.ndarray:
+    """(len(rows), n) node ids of the elements ``rows`` (the first n of each row)."""
+    return np.asarray(deck.connectivity)[rows][:, :n].astype(np.int64)
+
+
 def _check_jacobians(deck: Deck):
     """DeckError naming the first element with det J ≤ 0 (inverted or degenerate)."""
-    xi = tensor_rule("gauss", (2, 2, 2)).points
-    dN = HEX20.shape_gradients(np.vstack([xi, HEX20.nodes[:8] * 0.999]))
-    X = deck.coords[deck.node_index(deck.connectivity)]  # (m, 20, 3)
-    det = np.linalg.det(np.einsum("pak,cai->cpik", dN, X))
-    bad = np.flatnonzero(~np.all(det > 0.0, axis=1))
-    if bad.size:
-        eid = int(deck.element_ids[bad[0]])
-        raise DeckError(deck.where.get(("element", eid), deck.path),
-                        f"element {eid} is inverted or degenerate (det J <= 0; C3D20 node order?)")
+    tet = _is_tet(deck)
+    checks = ((HEX20, np.flatnonzero(~tet), np.vstack([tensor_rule("gauss", (2, 2, 2)).points, HEX20.nodes[:8] * 0.999]), "C3D20"),
+              (TET10, np.flatnonzero(tet), np.vstack([simplex_rule("tet4").points, 0.001 + 0.996 * TET10.nodes[:4]]), "C3D10"))
+    for element, rows, xi, name in checks:
+        if not rows.size:
+            continue
+        dN = element.shape_gradients(xi)
+        X = deck.coords[deck.node_index(_connectivity(deck, rows, element.n_nodes))]  # (m, n, 3)
+        det = np.linalg.det(np.einsum("pak,cai->cpik", dN, X))
+        bad = np.flatnonzero(~np.all(det > 0.0, axis=1))
+        if bad.size:
+            eid = int(deck.element_ids[rows[bad[0]]])
+            raise DeckError(deck.where.get(("element", eid), deck.path),
+                            f"element {eid} is inverted or degenerate (det J <= 0; {name} node order?)")
 
 
-def _contact_faces(deck: Deck) -> dict[int, tuple[int, int]]:
-    """{element id: (face, pair index)} of every face on a contact pair's surface."""
+def _contact_faces(deck: Deck, tets: set) -> dict[int, tuple[int, int]]:
+    """{element id: (face, pair index)} of every hexahedron's face on a contact pair's surface;
+    a C3D10's face number is checked (S1-S4) and the element left as it is."""
     out = {}
     for k, pair in enumerate(deck.contact_pairs):
         for name in (pair.slave, pair.master):
             for eid, face in deck.surfaces[name]:
+                if eid in tets:
+                    if face not in TET10_FACES:
+                        raise DeckError(pair.where, f"surface {name}: element {eid} is a C3D10, whose faces are "
+                                                    f"S1-S4, got S{face}")
+                    continue
                 if eid in out and out[eid] != (face, k):
                     raise DeckError(pair.where, f"element {eid} has faces on two contact surfaces (S{out[eid][0]} "
                                                 f"and S{face}): a transition element has one contact face; refine "
@@ -188,21 +221,22 @@ def deck_mesh(deck: Deck, family: str = "quadratic", rtol: float = DEFAULT_RTOL)
     transition = FAMILIES[family]
     shape_at = HEX20.shape(transition.nodes)  # the HEX20 geometry at the transition element's nodes,
     shape_at[np.abs(shape_at) < 1e-12] = 0.0  # exactly from the edge's or face's own nodes (a plane stays one)
-    on_contact = _contact_faces(deck)
-    X = deck.coords[deck.node_index(deck.connectivity)]
+    is_tet = _is_tet(deck)
+    on_contact = _contact_faces(deck, set(deck.element_ids[is_tet].tolist()))
     new_pos, new_key, parents = [], {}, []
     replaced_stencil = {}
     conn, kinds, rotations = [], [], []
     for row, eid in enumerate(deck.element_ids.tolist()):
-        nodes = deck.connectivity[row]
+        kind = TET10 if is_tet[row] else HEX20
+        nodes = _connectivity(deck, np.array([row]), kind.n_nodes)[0]
         if eid not in on_contact:
-            conn.append(list(nodes))
-            kinds.append(HEX20)
+            conn.append(nodes.tolist())
+            kinds.append(kind)
             rotations.append(0)
             continue
         r = _rotation_for(on_contact[eid][0])
         perm = _permutation(r)
-        ids, x = nodes[perm], X[row][perm]
+        ids, x = nodes[perm], deck.coords[deck.node_index(nodes)][perm]
         local = []
         for a, t in enumerate(_template(transition)):
             if t[0] == "old":
@@ -255,7 +289,7 @@ def deck_mesh(deck: Deck, family: str = "quadratic", rtol: float = DEFAULT_RTOL)
         b = members[key]
         cells[eid] = (b, len(blocks[b]), rotations[row])
         blocks[b].append([engine(i) for i in conn[row]])
-    kind_of = {e.name: e for e in (HEX20, HEX21, HEX28)}
+    kind_of = {e.name: e for e in (HEX20, HEX21, HEX28, TET10)}
     cell_blocks = [CellBlock(f"{mat}/{kind}", kind_of[kind], np.array(blocks[b], dtype=np.int64))
                    for (kind, mat), b in members.items()]
     replaced = {}
@@ -284,10 +318,10 @@ def _engine_set(ids, index, parents, n_deck) -> np.ndarray:
 def _faces(deck: Deck, mesh: Mesh, cells: dict, surface: str) -> tuple[np.ndarray, list[int]]:
     """(n, n_face) engine nodes of a surface's contact faces (outward order) and their elements."""
     rows, eids = [], []
-    for eid, _ in deck.surfaces[surface]:
+    for eid, face in deck.surfaces[surface]:
         b, c, _ = cells[eid]
         block = mesh.blocks[b]
-        _, idx = local_face(block.element, 2, -1)
+        _, idx = face_of(TET10, 0, face) if block.element is TET10 else local_face(block.element, 2, -1)
         rows.append(block.cells[c][list(idx)])
         eids.append(eid)
     return np.array(rows, dtype=np.int64), eids
@@ -299,11 +333,18 @@ def _interface(deck: Deck, mesh: Mesh, cells: dict, deck_nodes, k: int, pair, rt
     from scipy.spatial import cKDTree
 
     slave, slave_el = _faces(deck, mesh, cells, pair.slave)
-    master, _ = _faces(deck, mesh, cells, pair.master)
+    master, master_el = _faces(deck, mesh, cells, pair.master)
+    tet = [mesh.blocks[cells[e[0]][0]].element is TET10 for e in (slave_el, master_el)]
+    if tet[0] != tet[1]:
+        kind = {True: "C3D10", False: "C3D20"}
+        raise DeckError(pair.where, f"contact pair {pair.slave}/{pair.master}: {kind[tet[0]]} faces on the slave, "
+                                    f"{kind[tet[1]]} on the master; mixed tetrahedral-hexahedral contact is not "
+                                    "supported (mesh both sides with the same element type)")
     if slave.shape[1] != master.shape[1]:
         raise DeckError(pair.where, "slave and master faces differ in type")
     P = mesh.points
-    corners = np.concatenate([slave[:, :4], master[:, :4]])
+    n_corners = 3 if tet[0] else 4
+    corners = np.concatenate([slave[:, :n_corners], master[:, :n_corners]])
     edges = np.linalg.norm(P[corners] - P[np.roll(corners, 1, axis=1)], axis=-1)
     tol = rtol * float(edges.min())
     s_nodes, m_nodes = np.unique(slave), np.unique(master)

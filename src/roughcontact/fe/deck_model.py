@@ -151,7 +151,10 @@ def _interactions(dm: DeckMesh, laws: LawFile):
         block = dm.mesh.interfaces[k]
         one = Mesh(dm.mesh.points, dm.mesh.blocks, {}, {}, (block,), "pair")
         try:
-            pts = interface_points(one, "lobatto", law.lay_direction)
+            # nodal (Lobatto) points on quadrilateral faces; on the 6+6 triangles the nodal rule has
+            # zero weight at the corners (docs/fe.md, "Tetrahedra"): Dunavant's 6 Gauss points there
+            rule = "gauss" if block.element.face.domain == "simplex" else "lobatto"
+            pts = interface_points(one, rule, law.lay_direction)
         except ValueError as exc:  # the law's axis 1 is the lay projected on the faces: it must have one
             if "lay direction" not in str(exc):
                 raise

@@ -45,6 +45,16 @@ top-edge and vertical-edge mid-nodes, the contact face's interior nodes).
 
 Quadrilaterals (QUAD8 = S2, QUAD9 = Q2, QUAD16 = Q3 on the Lobatto nodes ±1, ±1/√5) are the
 faces and the sides of the zero-thickness interface elements.
+
+Simplices (``domain="simplex"``: the reference cell is the unit simplex x_i ≥ 0, Σ x_i ≤ 1, not
+[-1, 1]^d). TET10 is CalculiX's C3D10: corners 1-4 at (0,0,0), (1,0,0), (0,1,0), (0,0,1), mid-edge
+nodes 5: 1-2, 6: 2-3, 7: 3-1, 8: 1-4, 9: 2-4, 10: 3-4 (CalculiX manual, section 6.2.2; 0-based
+here), with the complete quadratics P2 in (ξ, η, ζ) (10 monomials); TRI6 is its face (corners 1-3,
+mid-sides 4: 1-2, 5: 2-3, 6: 3-1) with P2 in (ξ, η). The same Vandermonde construction gives the
+familiar shape functions (corner N = λ(2λ − 1), mid-edge N = 4 λ_i λ_j in the barycentric λ).
+:data:`TET10_FACES` lists the faces S1-S4 in CalculiX's order, each as TRI6 nodes oriented with
+∂x/∂u × ∂x/∂v pointing OUT of the element (CalculiX lists them inward: 1-2-3, 1-4-2, 2-4-3,
+3-4-1; the corner order is reversed here).
 """
 
 from __future__ import annotations
@@ -57,7 +67,7 @@ import numpy as np
 __all__ = [
     "Polynomials", "Element", "LOBATTO4", "QUAD8", "QUAD9", "QUAD16", "HEX20", "HEX21", "HEX28",
     "HEX20_NODES", "HEX21_NODES", "HEX28_NODES", "QUAD8_NODES", "QUAD9_NODES", "QUAD16_NODES",
-    "ELEMENTS",
+    "ELEMENTS", "P2_2D", "P2_3D", "TRI6", "TET10", "TRI6_NODES", "TET10_NODES", "TET10_FACES",
 ]
 
 #: the interior 4-point Gauss–Lobatto abscissa, c = 1/√5 (the paper's Fig. 11)
@@ -158,6 +168,9 @@ Q1 = _tensor_2d(1)
 Q2 = _tensor_2d(2)
 Q3 = _tensor_2d(3)
 S2 = Polynomials.monomials([(0, 0), (1, 0), (0, 1), (2, 0), (1, 1), (0, 2), (2, 1), (1, 2)])
+#: complete quadratics (total degree ≤ 2) in 2 and 3 variables: the spaces of TRI6 and TET10
+P2_2D = Polynomials.monomials([(a, b) for a in range(3) for b in range(3) if a + b <= 2])
+P2_3D = Polynomials.monomials([(a, b, c) for a in range(3) for b in range(3) for c in range(3) if a + b + c <= 2])
 
 # ζ-factors of the face layer: L0 = (1 − ζ)/2, L1 = (1 + ζ)/2, B = 1 − ζ² (coefficients of 1, ζ, ζ²)
 _L0, _L1, _B = (0.5, -0.5), (0.5, 0.5), (1.0, 0.0, -1.0)
@@ -216,7 +229,8 @@ class Element:
     """A Lagrange element: reference ``nodes`` (n, d) and the polynomial ``space`` they
     interpolate (n polynomials). ``degree`` is the highest power per variable (it sets the
     Gauss rule that integrates a stiffness exactly on affine cells: degree + 1 points per
-    direction, :attr:`gauss_counts`). ``contact_face`` lists, for a transition element, the local nodes of its
+    direction, :attr:`gauss_counts`; a ``domain="simplex"`` element is on the unit simplex and
+takes the simplex rules of :func:`.quadrature.element_rule` instead). ``contact_face`` lists, for a transition element, the local nodes of its
     ζ = −1 face in the order of ``face_element``'s nodes."""
 
     name: str
@@ -224,9 +238,12 @@ class Element:
     space: Polynomials
     face_element: "Element | None" = None
     contact_face: tuple[int, ...] = ()
+    domain: str = "cube"
     _inverse: np.ndarray = field(init=False, repr=False)
 
     def __post_init__(self):
+        if self.domain not in ("cube", "simplex"):
+            raise ValueError(f"{self.name}: domain must be 'cube' or 'simplex', got {self.domain!r}")
         nodes = np.asarray(self.nodes, dtype=float)
         if nodes.ndim != 2 or nodes.shape[1] != self.space.dim or nodes.shape[0] != len(self.space):
             raise ValueError(f"{self.name}: {nodes.shape[0]} nodes in {nodes.shape[1]}D do not fit a "
@@ -285,5 +302,32 @@ HEX20 = Element("hex20", HEX20_NODES, face_layer_space(S2, S2), QUAD8, _face_nod
 HEX21 = Element("hex21", HEX21_NODES, face_layer_space(Q2, S2), QUAD9, _face_nodes(HEX21_NODES, QUAD9_NODES))
 HEX28 = Element("hex28", HEX28_NODES, face_layer_space(Q3, S2), QUAD16, _face_nodes(HEX28_NODES, QUAD16_NODES))
 
+
+#: CalculiX C3D10 / S6 reference nodes (module docstring)
+TRI6_NODES = np.array([(0, 0), (1, 0), (0, 1), (0.5, 0), (0.5, 0.5), (0, 0.5)], dtype=float)
+_TET_CORNERS = np.array([(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)], dtype=float)
+_TET_EDGES = ((0, 1), (1, 2), (2, 0), (0, 3), (1, 3), (2, 3))
+TET10_NODES = np.vstack([_TET_CORNERS] + [[(_TET_CORNERS[i] + _TET_CORNERS[j]) / 2] for i, j in _TET_EDGES])
+
+
+def _tet_faces() -> dict[int, tuple[int, ...]]:
+    """{S: TRI6 node list} of the faces S1-S4 (0-based TET10 indices), outward: CalculiX's inward
+    corner triples (1-2-3, 1-4-2, 2-4-3, 3-4-1) reversed, mid-side nodes found by position."""
+    out = {}
+    for s, (a, b, c) in enumerate(((0, 1, 2), (0, 3, 1), (1, 3, 2), (2, 3, 0)), start=1):
+        corners = (a, c, b)
+        mids = []
+        for i, j in zip(corners, corners[1:] + corners[:1]):
+            mid = (TET10_NODES[i] + TET10_NODES[j]) / 2
+            mids.append(int(np.flatnonzero(np.all(np.isclose(TET10_NODES, mid), axis=1))[0]))
+        out[s] = corners + tuple(mids)
+    return out
+
+
+TRI6 = Element("tri6", TRI6_NODES, P2_2D, domain="simplex")
+TET10 = Element("tet10", TET10_NODES, P2_3D, TRI6, domain="simplex")
+#: faces S1-S4 of TET10 as TRI6 node lists (0-based), ∂x/∂u × ∂x/∂v outward
+TET10_FACES = _tet_faces()
+
 #: every element by name
-ELEMENTS = {e.name: e for e in (QUAD8, QUAD9, QUAD16, HEX20, HEX21, HEX28)}
+ELEMENTS = {e.name: e for e in (QUAD8, QUAD9, QUAD16, HEX20, HEX21, HEX28, TRI6, TET10)}

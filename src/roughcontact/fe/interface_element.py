@@ -9,6 +9,17 @@ to B, t1 the projection of the lay direction (global x by default) onto the face
 tangential slips and the normal opening. Integration points: ``"gauss"`` (p + 1)² Gauss–Legendre
 points or ``"lobatto"`` (p + 1)² Gauss–Lobatto points, which for these node sets are the nodes
 themselves (nodal integration), p the face's polynomial degree.
+
+The 12-node element between conforming 6-node triangles (TRI6, the faces of C3D10; Kratos'
+``TriangleInterfaceGeometry3D6Plus6Noded``, code_aster's MEEI_PENTA15 between quadratic
+triangles) has ``"gauss"``: Dunavant's 6-point degree-4 rule (positive weights, 18 conditions
+on the 18 relative dofs: no spurious zero-energy jump modes) and ``"lobatto"``: the nodal rule of
+the TRI6, whose weights are ∫N_a dA = 0 at the corners and A/3 at the mid-sides, i.e. the
+3-point mid-edge rule (degree 2, :mod:`.quadrature`). It integrates N_a × a uniform traction
+exactly (the consistent loads of a quadratic triangle under uniform pressure are zero at the
+corners), so it passes the uniform-pressure patch test, but it samples the law at the mid-side
+node pairs only: corner node pairs carry no contact force and the jump modes vanishing at the
+mid-sides are held by the bulk alone. "gauss" is the robust choice for tetrahedra.
 """
 
 from __future__ import annotations
@@ -17,11 +28,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .element import QUAD9, QUAD16, Element
-from .quadrature import Rule, tensor_rule
+from .element import QUAD9, QUAD16, TRI6, Element
+from .quadrature import Rule, simplex_rule, tensor_rule
 from ..limits import describe
 
-__all__ = ["InterfaceElement", "INTERFACE18", "INTERFACE32", "INTERFACES", "face_frame"]
+__all__ = ["InterfaceElement", "INTERFACE12", "INTERFACE18", "INTERFACE32", "INTERFACES", "face_frame"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -41,13 +52,20 @@ class InterfaceElement:
         return np.vstack([self.face.nodes, self.face.nodes])
 
     def rule(self, kind: str) -> Rule:
-        """The interface's integration rule: (p + 1)² points of ``kind`` ("gauss" | "lobatto")."""
+        """The interface's integration rule: (p + 1)² points of ``kind`` ("gauss" | "lobatto");
+        on a triangle the 6-point Gauss rule or the 3 mid-side nodes (module docstring)."""
+        if self.face.domain == "simplex":
+            names = {"gauss": "tri6", "lobatto": "tri_midedge"}
+            if kind not in names:
+                raise ValueError(f"rule kind must be one of {sorted(names)}, got {describe(kind)}")
+            return simplex_rule(names[kind])
         return tensor_rule(kind, self.face.gauss_counts)
 
 
 INTERFACE18 = InterfaceElement("interface18", QUAD9)
 INTERFACE32 = InterfaceElement("interface32", QUAD16)
-INTERFACES = {e.name: e for e in (INTERFACE18, INTERFACE32)}
+INTERFACE12 = InterfaceElement("interface12", TRI6)
+INTERFACES = {e.name: e for e in (INTERFACE12, INTERFACE18, INTERFACE32)}
 
 
 def face_frame(face: Element, x_face: np.ndarray, xi: np.ndarray, lay=(1.0, 0.0, 0.0)):

@@ -28,8 +28,8 @@ from functools import lru_cache
 
 import numpy as np
 
-from .element import HEX20, HEX21, HEX28, LOBATTO4, QUAD8, QUAD9, QUAD16, Element, Polynomials
-from .interface_element import INTERFACE18, INTERFACE32, InterfaceElement
+from .element import HEX20, HEX21, HEX28, LOBATTO4, QUAD8, QUAD9, QUAD16, TRI6, Element, Polynomials
+from .interface_element import INTERFACE12, INTERFACE18, INTERFACE32, InterfaceElement
 from ..limits import describe
 
 __all__ = [
@@ -43,7 +43,7 @@ _FRACTION = (1.0 + _LEVELS[:4]) / 2.0  # fraction of the element length at steps
 _STEPS = 4  # lattice steps per element
 _FACES = {"xmin": (0, -1), "xmax": (0, 1), "ymin": (1, -1), "ymax": (1, 1), "zmin": (2, -1), "zmax": (2, 1)}
 _TRANSITION = {"quadratic": HEX21, "cubic": HEX28}
-_INTERFACE_OF = {QUAD9.name: INTERFACE18, QUAD16.name: INTERFACE32}
+_INTERFACE_OF = {QUAD9.name: INTERFACE18, QUAD16.name: INTERFACE32, TRI6.name: INTERFACE12}
 
 
 def _lateral28_space() -> Polynomials:
@@ -148,14 +148,14 @@ class Mesh:
 
     def summary(self) -> dict:
         """Sizes: nodes, dofs, cells per block, interface elements, their integration points
-        ((p + 1)² per element) and distinct contact nodes (side B) per interface block."""
+        ((p + 1)² per element on quadrilaterals, 6 on triangles: the "gauss" rule) and distinct contact nodes (side B) per interface block."""
         return {
             "name": self.name,
             "nodes": self.n_nodes,
             "dofs": self.n_dofs,
             "cells": {b.name: len(b.cells) for b in self.blocks},
             "interface_elements": {i.name: len(i.cells) for i in self.interfaces},
-            "interface_points": {i.name: len(i.cells) * int(np.prod(i.element.face.gauss_counts))
+            "interface_points": {i.name: len(i.cells) * len(i.element.rule("gauss").weights)
                                  for i in self.interfaces},
             "interface_nodes": {i.name: int(np.unique(i.side("B")).size) for i in self.interfaces},
         }
@@ -337,7 +337,7 @@ def _face_set(mesh: Mesh, name: str) -> tuple[FaceSet, InterfaceElement]:
     fs = mesh.face_sets[name]
     if fs.face_element.name not in _INTERFACE_OF:
         raise ValueError(f"face set {describe(name)} has {fs.face_element.name} faces; "
-                         "interface elements need quad9 or quad16 faces")
+                         "interface elements need quad9, quad16 or tri6 faces")
     return fs, _INTERFACE_OF[fs.face_element.name]
 
 

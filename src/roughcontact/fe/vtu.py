@@ -2,7 +2,8 @@
 
 Cell mapping (VTK has no 21- or 28-node hexahedron):
 
-* HEX20 → VTK quadratic hexahedron ("hexahedron20"); the node orders are the same.
+* HEX20 → VTK quadratic hexahedron ("hexahedron20"); the node orders are the same. TET10 (C3D10)
+  → "tetra10" and its 6-node faces → "triangle6", as they are (the same node orders).
 * HEX21 → "hexahedron20" of its nodes 0–19, which are exactly HEX20's. The contact-face centre
   (node 20) is a point of the file with its data, but the cell draws that face serendipity-wise.
 * HEX28 → "hexahedron20" too: its corners, top and vertical mid-edge nodes are nodes of the mesh;
@@ -40,6 +41,11 @@ __all__ = ["write_mesh", "write_interfaces", "write_points", "hex20_view"]
 # ---------------------------------------------------------------------------------------------
 # cells
 # ---------------------------------------------------------------------------------------------
+#: elements and faces whose node order is VTK's: written as they are (C3D10 = VTK's quadratic
+#: tetra: corners, then the mid-edges 0-1, 1-2, 2-0, 0-3, 1-3, 2-3; TRI6 = quadratic triangle)
+DIRECT_CELLS = {"tet10": "tetra10"}
+DIRECT_FACES = {"quad9": "quad9", "tri6": "triangle6"}
+
 def _hex20_stencils(element: Element):
     """For each of HEX20's 20 reference nodes: the element's node there (index ≥ 0), or −1 and
     the element's shape-function weights at that point (only the nonzero ones kept)."""
@@ -64,6 +70,9 @@ def hex20_view(mesh: Mesh):
     """
     cells, stencil_ids, stencil_w, owners = [], [], [], []
     for b, block in enumerate(mesh.blocks):
+        if block.element.name in DIRECT_CELLS:  # written as they are (write_mesh)
+            cells.append(block.cells)
+            continue
         idx, stencils = _hex20_stencils(block.element)
         out = np.where(idx >= 0, block.cells[:, np.maximum(idx, 0)], -1)
         for a, (nz, w) in stencils.items():
@@ -149,7 +158,8 @@ def write_mesh(path, mesh: Mesh, point_data=None, cell_data=None) -> Path:
         if [len(a) for a in arrays] != [len(c) for c in cells]:
             raise ValueError(f"cell data {name!r} needs one array per block with one row per cell")
         cdata[name] = arrays
-    m = meshio.Mesh(_extend(mesh.points, ids, w), [("hexahedron20", c) for c in cells],
+    kinds = [DIRECT_CELLS.get(block.element.name, "hexahedron20") for block in mesh.blocks]
+    m = meshio.Mesh(_extend(mesh.points, ids, w), list(zip(kinds, cells)),
                     point_data={k: _extend(v, ids, w) for k, v in data.items()}, cell_data=cdata)
     return _write(path, m)
 
@@ -164,8 +174,8 @@ def write_interfaces(path, mesh: Mesh, point_data=None) -> Path:
     for block in mesh.interfaces:
         face, side_b = block.element.face, block.side("B")
         element_ids = np.arange(len(side_b))
-        if face.name == "quad9":
-            blocks.append(("quad9", side_b))
+        if face.name in DIRECT_FACES:
+            blocks.append((DIRECT_FACES[face.name], side_b))
             owner.append(element_ids)
         else:
             sub = _subquads(face)
