@@ -125,16 +125,26 @@ def test_an_include_outside_the_folder_is_not_echoed(capsys, tmp_path, law):
         assert said.startswith("/etc/passwd:") and "/bin/" not in said and "root" not in said.lower()
 
 
-def test_ignored_step_values_are_notes_in_the_output(capsys, tmp_path, law):
+def test_step_values_are_honoured_and_the_command_line_overrides_them(capsys, tmp_path, law):
+    """Issue 31: INC= and *STATIC's minimum and maximum are honoured (no note); --increments and
+    --max-increments replace them, a note each; too few increments exit 1 naming the step."""
     text = deck(STEP.replace("*STEP", "*STEP, INC=50").replace("0.5, 1.", "0.5, 1., 1e-5, 0.5"))
     (tmp_path / "m.inp").write_text(text)
     code, out, err = fe_run(capsys, tmp_path / "m.inp", law)
     assert code == 0, err
-    notes = [line for line in out.splitlines() if line.startswith("note: ")]
-    where = f"{tmp_path / 'm.inp'}:{line_of(text, '1e-5')}"
-    assert f"note: {where}: *STATIC the minimum increment 1e-05 ignored: the step runs 2 fixed increments " \
-           "(period / initial increment), each halved when Newton fails (up to six times)" in notes
-    assert f"note: {where}: *STATIC the maximum increment 0.5 ignored: the step runs 2 fixed increments " \
-           "(period / initial increment), each halved when Newton fails (up to six times)" in notes
-    assert f"note: {tmp_path / 'm.inp'}:{line_of(text, 'INC=50')}: *STEP, INC=50 (the maximum number of increments) " \
-           "ignored: the step runs its 2 increments of *STATIC" in notes
+    assert not [line for line in out.splitlines() if line.startswith("note: ") and ("STATIC" in line or "INC" in line)]
+    assert "(time 1, 2 increments)" in out
+    code, out, err = fe_run(capsys, tmp_path / "m.inp", law, "--increments", 4, "--max-increments", 8)
+    assert code == 0, err
+    assert "(time 1, 4 increments)" in out
+    where = f"{tmp_path / 'm.inp'}"
+    assert f"note: {where}:{line_of(text, '1e-5')}: --increments 4 overrides *STATIC's initial increment 0.5: the step " \
+           "runs 4 fixed increments of 0.25" in out.splitlines()
+    assert f"note: {where}:{line_of(text, 'INC=50')}: --max-increments 8 overrides *STEP, INC=50" in out.splitlines()
+    code, out, err = fe_run(capsys, tmp_path / "m.inp", law, "--increments", 4, "--max-increments", 3)
+    assert code == 1 and out == "" and "Traceback" not in err
+    assert err.startswith(f"roughcontact: error: step 1 ({where}:{line_of(text, 'INC=50')}): its 4 fixed increments "
+                          "(period 1 / initial increment 0.25) exceed the maximum number of increments 3")
+    for bad in ("0", "100001"):
+        code, out, err = fe_run(capsys, tmp_path / "m.inp", law, "--max-increments", bad)
+        assert code == 2 and err == f"roughcontact: error: --max-increments {bad}: must lie in 1 ... 100000\n"

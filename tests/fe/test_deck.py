@@ -59,7 +59,7 @@ def test_a_minimal_deck(write_deck):
     d = read_deck(write_deck(minimal("*BOUNDARY\n1, 1, 3\n")))
     assert d.connectivity.shape == (1, 20) and d.element_types == ("C3D20",) and d.materials["M"].E == 2.1e5
     assert d.steps[0].fractions == (0.5, 1.0) and d.steps[0].boundary == {(1, 1): 0.0, (1, 2): 0.0, (1, 3): 0.0}
-    assert set(ELEMENT_TYPES) == {"C3D20", "C3D20R"}
+    assert set(ELEMENT_TYPES) == {"C3D20", "C3D20R", "C3D10"}
     d = read_deck(write_deck(minimal(elements="C3D20R")))
     assert d.element_types == ("C3D20R",)
 
@@ -157,8 +157,11 @@ def test_bad_materials(write_deck, text, message):
 def test_unknown_element_types_say_what_to_do(write_deck):
     with pytest.raises(DeckError, match="unknown element type C3D8: 8-node hexahedra cannot carry"):
         read_deck(write_deck(minimal(elements="C3D8")))
-    with pytest.raises(DeckError, match="unknown element type C3D10: the engine runs 20-node hexahedra"):
-        read_deck(write_deck(minimal(elements="C3D10")))
+    with pytest.raises(DeckError, match=r"unknown element type C3D4: the engine runs 20-node hexahedra \(C3D20, "
+                                        r"C3D20R\) and 10-node tetrahedra \(C3D10\)"):
+        read_deck(write_deck(minimal(elements="C3D4")))
+    with pytest.raises(DeckError, match=r"C3D10 element 1 with 20 nodes \(C3D10 needs 10\)"):
+        read_deck(write_deck(minimal(elements="C3D10")))  # a hexahedron's connectivity under TYPE=C3D10
 
 
 def test_elements_and_sections_checked(write_deck):

@@ -111,19 +111,21 @@ def test_bare_nlgeom_is_geometric_nonlinearity_not_a_missing_value(write_deck):
     assert read_deck(write_deck(minimal(steps="*STEP, NLGEOM=NO\n*STATIC\n*END STEP\n"), "no.inp")).steps
 
 
-def test_ignored_step_values_each_get_a_note(write_deck):
+def test_step_values_are_kept_and_only_ignored_ones_get_a_note(write_deck):
+    """Issue 31: INC= and *STATIC's minimum and maximum are honoured (tests/fe/test_incrementation.py),
+    so no note; DIRECT ignores its minimum and maximum, a note each."""
     text = minimal(steps="*STEP, INC=1000\n*STATIC\n0.1, 1.0, 1e-6, 0.25\n*END STEP\n"
-                         "*STEP\n*STATIC, DIRECT\n0.5, 1.\n*END STEP\n")
+                         "*STEP\n*STATIC, DIRECT\n0.5, 1., 1e-3, 0.5\n*END STEP\n")
     d = read_deck(write_deck(text))
-    static = f"{d.path}:{line_of(text, '0.1, 1.0')}"
-    notes = [n for n in d.notes]
-    assert notes == [f"{static}: *STATIC the minimum increment 1e-06 ignored: the step runs 10 fixed increments "
-                     "(period / initial increment), each halved when Newton fails (up to six times)",
-                     f"{static}: *STATIC the maximum increment 0.25 ignored: the step runs 10 fixed increments "
-                     "(period / initial increment), each halved when Newton fails (up to six times)",
-                     f"{d.path}:{line_of(text, 'INC=1000')}: *STEP, INC=1000 (the maximum number of increments) "
-                     "ignored: the step runs its 10 increments of *STATIC"]
-    assert d.steps[0].fractions[-1] == 1.0 and len(d.steps[0].fractions) == 10 and len(d.steps[1].fractions) == 2
+    static = f"{d.path}:{line_of(text, '0.5, 1., 1e-3')}"
+    assert list(d.notes) == [f"{static}: *STATIC the minimum increment 0.001 ignored: DIRECT runs 2 fixed increments "
+                             "(period / initial increment), each halved when Newton fails (up to six times)",
+                             f"{static}: *STATIC the maximum increment 0.5 ignored: DIRECT runs 2 fixed increments "
+                             "(period / initial increment), each halved when Newton fails (up to six times)"]
+    first, second = d.steps
+    assert (first.minimum, first.maximum, first.max_increments, first.direct) == (1e-6, 0.25, 1000, False)
+    assert (second.minimum, second.maximum, second.max_increments, second.direct) == (None, None, None, True)
+    assert first.fractions[-1] == 1.0 and len(first.fractions) == 10 and len(second.fractions) == 2
 
 
 def test_a_second_static_data_line_is_refused(write_deck):

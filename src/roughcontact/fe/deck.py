@@ -25,8 +25,10 @@ upper-cased, as both codes do):
 ``*BOUNDARY``              node or nset, first dof[, last dof[, value]], or node/nset, XSYMM,
                            YSYMM, ZSYMM, PINNED, ENCASTRE; in the model (every step) or a step
 ``*STEP`` … ``*END STEP``  with ``*STATIC``: initial increment (positive, normal, at most the
-                           period, as ccx requires), period (the increments); ``INC=`` and the
-                           minimum and maximum increments ignored with a note each;
+                           period, as ccx requires), period, minimum and maximum increment;
+                           ``INC=`` the maximum number of increments; ``DIRECT``: fixed
+                           increments (its minimum/maximum ignored, a note each; ``SOLVER=``
+                           too) — docs/own-model.md, "Incrementation";
                            ``NLGEOM`` (bare: YES) an error but ``NLGEOM=NO``
 ``*CLOAD``                 node or nset, dof, force
 ``*DLOAD``                 element or elset, P1 … P6, pressure on that face
@@ -55,8 +57,9 @@ from .deck_syntax import DeckError, Keyword, check_count, read_blocks, shown
 
 __all__ = ["Deck", "Material", "ContactPair", "Step", "read_deck", "ELEMENT_TYPES", "IGNORED", "DeckError"]
 
-#: element types read as the 20-node hexahedron (C3D20R's reduced integration is not used)
-ELEMENT_TYPES = {"C3D20": 20, "C3D20R": 20}
+#: element types and their node counts: the 20-node hexahedron (C3D20R's reduced integration is
+#: not used) and the 10-node tetrahedron (deck_mesh: TET10, issue 31)
+ELEMENT_TYPES = {"C3D20": 20, "C3D20R": 20, "C3D10": 10}
 _UNSUPPORTED_ELEMENTS = {
     "C3D8": "8-node hexahedra cannot carry the paper's transition and interface elements (quadratic or cubic "
             "faces): mesh with C3D20 (e.g. gmsh -order 2)",
@@ -108,6 +111,13 @@ class Step:
     boundary: dict
     cload: dict
     dload: dict
+    #: *STATIC's minimum and maximum increment (deck time; None: not given or DIRECT),
+    #: *STEP, INC= and DIRECT, and the *STATIC data line (deck_run: the incrementation)
+    minimum: float | None = None
+    maximum: float | None = None
+    max_increments: int | None = None
+    direct: bool = False
+    static_where: str = ""
 
 
 @dataclass(frozen=True, eq=False)
@@ -262,7 +272,7 @@ class _Reader:
         etype = kw.param("TYPE", required=True).upper()
         if etype not in ELEMENT_TYPES:
             why = _UNSUPPORTED_ELEMENTS.get(etype[:4] if etype.startswith("C3D8") else etype,
-                                            "the engine runs 20-node hexahedra (C3D20, C3D20R) only")
+                                            "the engine runs 20-node hexahedra (C3D20, C3D20R) and 10-node tetrahedra (C3D10)")
             raise DeckError(kw.where, f"unknown element type {shown(etype)}: {why}")
         n = ELEMENT_TYPES[etype]
         elset = kw.param("ELSET")
@@ -474,13 +484,16 @@ class _Reader:
                           "inc": _int(inc, kw.where, "*STEP, INC= (the maximum number of increments)") if inc else None}
 
     #: *STATIC's data fields beyond the initial increment and the period (Abaqus, CalculiX)
-    _STATIC_IGNORED = ("the minimum increment", "the maximum increment")
+    _STATIC_LIMITS = ("the minimum increment", "the maximum increment")
 
     def static(self, kw):
         if self.step_open is None:
             raise DeckError(kw.where, "*STATIC outside a *STEP")
-        kw.flag("DIRECT")
-        kw.param("SOLVER")
+        direct = kw.flag("DIRECT")
+        solver = kw.param("SOLVER")
+        if solver:
+            self.notes.append(f"{kw.where}: *STATIC, SOLVER={shown(solver)} ignored: the engine chooses its own "
+                              "linear solver")
         if len(kw.data) > 1:
             raise DeckError(kw.data[1].where, "*STATIC takes one data line: initial increment, period[, minimum, "
                                               "maximum increment]")
@@ -503,28 +516,33 @@ class _Reader:
             raise DeckError(where, f"*STATIC: {ratio:.4g} increments (period {period:g} / initial increment "
                                    f"{initial:g}) exceed {MAX_INCREMENTS}")
         n = max(1, math.ceil(ratio * (1.0 - 1e-12)))
+        limits = [None, None]
         for k, text in enumerate(fields[2:], start=3):
             if not text:
                 continue
-            what = self._STATIC_IGNORED[k - 3] if k - 3 < len(self._STATIC_IGNORED) else f"field {k}"
+            what = self._STATIC_LIMITS[k - 3] if k - 3 < len(self._STATIC_LIMITS) else f"field {k}"
             value = _real(text, where, f"*STATIC {what}")
-            self.notes.append(f"{where}: *STATIC {what} {value:g} ignored: the step runs {n} fixed increments "
-                              "(period / initial increment), each halved when Newton fails (up to six times)")
-        self.step_open["fractions"] = tuple((k + 1) * initial / period for k in range(n - 1)) + (1.0,)
-        self.step_open["period"] = period
+            if k > 4 or direct:
+                why = "DIRECT runs" if direct else "the step runs"
+                self.notes.append(f"{where}: *STATIC {what} {value:g} ignored: {why} {n} fixed increments "
+                                  "(period / initial increment), each halved when Newton fails (up to six times)")
+            elif not 0.0 < value < math.inf or (k == 3 and value > initial) or (k == 4 and value < initial):
+                rule = "at most the initial increment" if k == 3 else "at least the initial increment"
+                raise DeckError(where, f"*STATIC {what} {value:g}: it must be positive and {rule} {initial:g}")
+            else:
+                limits[k - 3] = value
+        self.step_open.update(fractions=tuple((k + 1) * initial / period for k in range(n - 1)) + (1.0,),
+                              period=period, minimum=limits[0], maximum=limits[1], direct=direct, static_where=where)
 
     def end_step(self, kw):
         if self.step_open is None:
             raise DeckError(kw.where, "*END STEP without *STEP")
         if self.step_open["fractions"] is None:
             raise DeckError(self.step_open["where"], "a step needs *STATIC (the only procedure supported)")
-        if self.step_open["inc"] is not None:
-            n = len(self.step_open["fractions"])
-            self.notes.append(f"{self.step_open['where']}: *STEP, INC={self.step_open['inc']} (the maximum number of "
-                              f"increments) ignored: the step runs its {n} increments of *STATIC")
-        self.steps.append(Step(len(self.steps) + 1, self.step_open["where"], self.step_open["period"],
-                               self.step_open["fractions"],
-                               dict(self.state["boundary"]), dict(self.state["cload"]), dict(self.state["dload"])))
+        o = self.step_open
+        self.steps.append(Step(len(self.steps) + 1, o["where"], o["period"], o["fractions"],
+                               dict(self.state["boundary"]), dict(self.state["cload"]), dict(self.state["dload"]),
+                               o["minimum"], o["maximum"], o["inc"], o["direct"], o["static_where"]))
         self.step_open = None
 
 
@@ -542,6 +560,12 @@ _OPTIONS = {"ELASTIC", "SURFACE BEHAVIOR", "FRICTION"}
 #: keywords with data lines (the others take none)
 _TAKES_DATA = {"HEADING", "NODE", "ELEMENT", "NSET", "ELSET", "SURFACE", "ELASTIC", "BOUNDARY", "CLOAD", "DLOAD",
                "STATIC", "CONTACT PAIR", "SURFACE BEHAVIOR", "FRICTION", "SOLID SECTION"}
+
+
+def _padded(conn: tuple[int, ...]) -> tuple[int, ...]:
+    """A connectivity as a row of 20 ids: a C3D10's 10 then its first id repeated (deck_mesh reads
+    the first ELEMENT_TYPES[type] of a row)."""
+    return conn + (conn[0],) * (20 - len(conn))
 
 
 def read_deck(path, text: str | None = None) -> Deck:
@@ -580,7 +604,7 @@ def _finish(r: _Reader) -> Deck:
         path=r.path, heading=r.heading, node_ids=node_ids,
         coords=np.array([r.nodes[i] for i in node_ids], dtype=float).reshape(-1, 3),
         element_ids=element_ids, element_types=tuple(r.elements[i][0] for i in element_ids),
-        connectivity=np.array([r.elements[i][1] for i in element_ids], dtype=np.int64),
+        connectivity=np.array([_padded(r.elements[i][1]) for i in element_ids], dtype=np.int64),
         nsets={k: np.array(sorted(v), dtype=np.int64) for k, v in r.nsets.items()},
         elsets={k: np.array(sorted(v), dtype=np.int64) for k, v in r.elsets.items()},
         surfaces={k: tuple(v) for k, v in r.surfaces.items()}, materials=dict(r.materials),

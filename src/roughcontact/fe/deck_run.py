@@ -6,9 +6,10 @@ holds the prescribed displacement increments (target − u_s on every supported 
 interface, :mod:`.deck_model`) and λ runs through the step's increments to 1. Its equations are
 the solver's with the dead load F_s − K u_s and the load pattern (F_e − F_s) − K d (F_s, F_e the
 load vectors at the step's start and end: loads move linearly within a step), and the interface
-laws continue from the committed states. The solver cuts an increment back when Newton fails
-and reports it; a step that still fails raises :class:`DeckConvergenceError` naming the step,
-its line and the increment.
+laws continue from the committed states. The step's increments follow its *STATIC and INC=
+(:mod:`.deck_increments`): fixed, or growing up to the maximum increment; the solver cuts an
+increment back when Newton fails and reports it; a step that still fails raises
+:class:`DeckConvergenceError` naming the step, its line and the increment.
 
 Outputs per interface point (:meth:`DeckResult.interface_fields`): position x, y, z (master
 side, deck length unit); u_N_um, the closure from the law's reference state (the seating
@@ -33,7 +34,8 @@ import numpy as np
 from ..interface import friction
 from .deck_model import DeckProblem, surface_material
 from .laws import LENGTH_UNITS, UNIT_RTOL, LawError
-from .solver import ContactModel, ConvergenceError, NewtonOptions, solve
+from .deck_increments import IncrementsExceeded, check_fixed_counts, grows, level_stepping
+from .solver import BELOW_SMALLEST, ContactModel, ConvergenceError, IncrementLimitError, NewtonOptions, Stepping, solve
 
 __all__ = ["DeckIncrement", "DeckResult", "DeckConvergenceError", "run_deck", "run_deck_file", "STATUS_NAMES",
            "check_law_file", "law_notes", "SOLID_E_STAR_PA"]
@@ -53,9 +55,13 @@ class DeckConvergenceError(ConvergenceError):
     def __init__(self, step, exc: ConvergenceError, increment: int, fraction: float):
         hint = (" (a body free to move as a rigid body? a frictionless interface holds nothing tangentially: "
                 "support the bodies in every direction)" if "singular" in exc.reason else "")
-        RuntimeError.__init__(self, f"step {step.index} ({step.where}): no convergence at increment {increment} "
-                                    f"of {len(step.fractions)} (step fraction {fraction:.6g}): {exc.reason}{hint}; "
-                                    f"residual {exc.residual:.3e} after the allowed cut-backs")
+        of = "" if grows(step) else f" of {len(step.fractions)}"
+        reason, below, _ = exc.reason.partition(BELOW_SMALLEST)  # the solver's step is in load-level units
+        floor = (f": a further cut-back would fall below the minimum increment {step.minimum:g} of *STATIC at "
+                 f"{step.static_where}" if below else "")
+        RuntimeError.__init__(self, f"step {step.index} ({step.where}): no convergence at increment {increment}"
+                                    f"{of} (step fraction {fraction:.6g}): {reason}{hint}; "
+                                    f"residual {exc.residual:.3e} after the allowed cut-backs{floor}")
         self.increment, self.level, self.residual, self.reason = exc.increment, exc.level, exc.residual, exc.reason
         self.step = step.index
 
@@ -165,6 +171,7 @@ class DeckResult:
             end = incs[-1]
             f = self.interface_fields(end)
             entry = {"step": step.index, "time": end.time, "increments": len(incs),
+                     "fractions": [float(i.fraction) for i in incs],
                      "newton_iterations": [int(i.iterations) for i in incs],
                      "cutbacks": int(sum(i.cutbacks for i in incs))}
             if node_sets:
@@ -205,7 +212,8 @@ def _parallel(z, P) -> float | None:
 
 def _plan(problem: DeckProblem, s: int, u: np.ndarray, F_start: np.ndarray):
     """One solve from step s: the steps it covers, its supports, the dead load part, the load
-    pattern (forces, prescribed displacements) and the levels [(step, fraction, λ)].
+    pattern (forces, prescribed displacements) and the levels [(step, fraction, λ, λ at the
+    step's start, dλ per unit fraction)] (a growing step, :mod:`.deck_increments`: one level).
 
     Steps whose load increments (forces and prescribed displacements together) are multiples
     c_k of one pattern, on the same supports, are one solve along λ (the solver's secant
@@ -238,19 +246,24 @@ def _plan(problem: DeckProblem, s: int, u: np.ndarray, F_start: np.ndarray):
         following, pattern, c_first, dead_first = [], z(s), 1.0, False
     covered, levels, lam = [s], [], 0.0
     if dead_first:
-        levels.append((s, 1.0, 0.0))
+        levels.append((s, 1.0, 0.0, 0.0, 0.0))
     else:
-        levels += [(s, f, c_first * f) for f in steps[s].fractions]
+        levels += [(s, f, c_first * f, 0.0, c_first) for f in _fractions(steps[s])]
         lam = c_first
     for k in following:
         c = _parallel(z(k), pattern)
         if c is None:
             break
-        levels += [(k, f, lam + c * f) for f in steps[k].fractions]
+        levels += [(k, f, lam + c * f, lam, c) for f in _fractions(steps[k])]
         lam += c
         covered.append(k)
     dead_z = z(s) if dead_first else np.zeros(2 * n)
     return covered, fixed, dead_z, pattern, levels
+
+
+def _fractions(step) -> tuple[float, ...]:
+    """The fractions the solver is given as levels: every fixed increment, or a growing step's end."""
+    return (1.0,) if grows(step) else step.fractions
 
 
 def run_deck(problem: DeckProblem, options: NewtonOptions | None = None, progress=None) -> DeckResult:
@@ -258,6 +271,7 @@ def run_deck(problem: DeckProblem, options: NewtonOptions | None = None, progres
     load path). ``progress(step, n_steps, k, n, increment)`` after every converged increment."""
     t0 = time.perf_counter()
     deck, K = problem.dm.deck, problem.stiffness
+    check_fixed_counts(deck)
     n = K.shape[0]
     u, F_start, materials = np.zeros(n), np.zeros(n), problem.materials
     start_time = np.concatenate([[0.0], np.cumsum([st.period for st in deck.steps])])
@@ -268,23 +282,39 @@ def run_deck(problem: DeckProblem, options: NewtonOptions | None = None, progres
         # the node coordinates give the linear solvers their nested-dissection ordering
         model = ContactModel(K, problem.points, materials, fixed, pattern[:n] - K @ pattern[n:],
                              F_start + dead_z[:n] - K @ (u + dead_u), coordinates=problem.mesh.points)
-        counts = {k: sum(1 for lv in levels if lv[0] == k) for k in covered}
+        counts = {k: None if grows(deck.steps[k]) else sum(1 for lv in levels if lv[0] == k) for k in covered}
+        done = {k: 0 for k in covered}  # converged increments of each step so far
 
-        def report(j, m, inc, levels=levels, counts=counts):
+        def report(j, m, inc, levels=levels, counts=counts, done=done):
+            k = levels[j - 1][0]
+            done[k] += 1
             if progress is not None:
-                k = levels[j - 1][0]
-                progress(k + 1, len(deck.steps), sum(1 for lv in levels[:j] if lv[0] == k), counts[k], inc)
+                progress(k + 1, len(deck.steps), done[k], counts[k], inc)
 
         try:
-            sol = solve(model, [lv[2] for lv in levels], options, report)
+            specs = [level_stepping(deck.steps[lv[0]], lv[4]) for lv in levels]
+            plain = all(spec == Stepping() for spec in specs)  # every level in one step, cut back on failure
+            sol = solve(model, [lv[2] for lv in levels], options, report, **({} if plain else {"stepping": specs}))
         except ConvergenceError as exc:
-            k, f, _ = levels[exc.increment - 1]
-            raise DeckConvergenceError(deck.steps[k], exc, sum(1 for lv in levels[:exc.increment] if lv[0] == k),
-                                       f) from None
-        for (k, f, lam), inc in zip(levels, sol.increments):
+            k, f, lam, lam0, c = levels[exc.increment - 1]
+            step = deck.steps[k]
+            f = (exc.level - lam0) / c if grows(step) and c != 0.0 else f
+            if isinstance(exc, IncrementLimitError):
+                raise IncrementsExceeded(step, f"*STEP, INC={step.max_increments} (the maximum number of increments, "
+                                               f"or --max-increments) reached at step fraction {f:.6g}: the step needs "
+                                               f"more increments; raise it, or the maximum increment {step.maximum:g} "
+                                               f"(*STATIC at {step.static_where})", exc.level, exc.residual) from None
+            raise DeckConvergenceError(step, exc, done[k] + 1, f) from None
+        j = 0
+        for inc in sol.increments:
+            k, f, lam, lam0, c = levels[j]
+            if inc.level == lam:  # the level's own increment (the solver lands on it exactly)
+                j += 1
+            else:  # a growing step's sub-step
+                f = (inc.level - lam0) / c
             out.append(DeckIncrement(k + 1, f, start_time[k] + f * deck.steps[k].period,
-                                     u + dead_u + inc.u + lam * pattern[n:], inc.state, inc.tractions, inc.status,
-                                     inc.iterations, inc.cutbacks, inc.seconds))
+                                     u + dead_u + inc.u + inc.level * pattern[n:], inc.state, inc.tractions,
+                                     inc.status, inc.iterations, inc.cutbacks, inc.seconds))
         u = out[-1].u
         materials = problem.materials.resumed(sol.final.state)
         F_start = problem.loads[covered[-1]]
@@ -338,19 +368,21 @@ def law_notes(deck, laws) -> list[str]:
 
 
 def run_deck_file(deck, laws, family: str = "quadratic", options: NewtonOptions | None = None,
-                  progress=None) -> DeckResult:
+                  progress=None, *, increments: int | None = None, max_increments: int | None = None) -> DeckResult:
     """Read, mesh, assemble and solve: ``deck`` a path or a :class:`~.deck.Deck`, ``laws`` a
     path or a :class:`~.laws.LawFile`. A law file read from a path is checked against the deck
     (:func:`check_law_file`; a LawFile built by the library's examples, whose E* may be chosen
     apart from the bodies', e.g. ``fe punch --E-star``, is not); every law's lay direction is, where
-    deck_model builds the interface points."""
+    deck_model builds the interface points. ``increments``, ``max_increments``: the command
+    line's overrides of every step's incrementation (:func:`.deck_increments.with_incrementation`)."""
     from .deck import Deck, read_deck
     from .deck_mesh import deck_mesh
+    from .deck_increments import with_incrementation
     from .deck_model import deck_problem
     from .laws import LawFile, read_law_file
 
     t0 = time.perf_counter()
-    deck = deck if isinstance(deck, Deck) else read_deck(deck)
+    deck = with_incrementation(deck if isinstance(deck, Deck) else read_deck(deck), increments, max_increments)
     if not isinstance(laws, LawFile):
         laws = read_law_file(laws)
         check_law_file(deck, laws)
