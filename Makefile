@@ -4,7 +4,7 @@
 #   make test        create .venv (if missing), install, run the test suite (fast tier, < 3 min)
 #
 # Other targets: test-slow (the slow tier: mpmath references, workflow runs; CI: test-slow-ci), test-all, test-slurm,
-# bench (speed against error, full mode), bench-fe (FE: block-on-base deck vs CalculiX, linear solvers), verify (verification report and verdict gate only),
+# bench (speed against error, full mode), bench-fe (FE: block-on-base deck vs CalculiX, linear solvers, large contact interfaces), verify (verification report and verdict gate only),
 # docs (API reference, Sphinx, warnings are errors), dry-run, ci (.ci/run), clean (generated results),
 # distclean (+ .venv).
 
@@ -78,6 +78,7 @@ bench: $(STAMP)
 bench-fe: $(STAMP)
 	$(PY) benchmarks/fe_block_on_base.py
 	$(PY) benchmarks/fe_linear_solvers.py
+	$(PY) benchmarks/fe_large_interface.py
 
 # pyproject.toml deselects the mpmath- and slow-marked tests by default ("fast by default")
 # numba's on-disk cache filled before the workers start (roughcontact.warmup: on a fresh clone

@@ -114,21 +114,29 @@ def test_residual_jacobian_is_the_consistent_tangent(tangential, materials):
     assert worst <= 1e-6
 
 
+def slipped_state(materials, tangential):
+    """(model, u, r, response): the block converged at level 1, then every free dof moved by
+    2e-4 mm (tangential slips of 0.2 µm: Coulomb points slip, an unsymmetric tangent), with the
+    residual r and the law's response there."""
+    model = block_model(materials[tangential])
+    free = model.free
+    sol = solve(model, [P0, 1.0])
+    rng = np.random.default_rng(1)
+    u = sol.final.u.copy()
+    u[free] += rng.normal(scale=2e-4, size=free.size)
+    r, resp = residual(model, 1.0, u, sol.final.u, sol.final.state)
+    if tangential == "coulomb":
+        assert np.any(resp.status == fr.SLIP) and not np.allclose(resp.tangent, np.swapaxes(resp.tangent, 1, 2))
+    return model, u, r, resp
+
+
 @pytest.mark.parametrize("kind", ["sparse", "condensed", "auto"])
 @pytest.mark.parametrize("tangential", ["free", "coulomb"])
 def test_linear_solvers_solve_the_tangent_system(kind, tangential, materials):
     """Both linear strategies return du with K_t du = r (the Cholesky path for the symmetric
     frictionless tangent, LU for the unsymmetric sliding one)."""
-    mat = materials[tangential]
-    model = block_model(mat)
+    model, u, r, resp = slipped_state(materials, tangential)
     free = model.free
-    sol = solve(model, [P0, 1.0])
-    rng = np.random.default_rng(1)
-    u = sol.final.u.copy()
-    u[free] += rng.normal(scale=2e-4, size=free.size)  # tangential slips of 0.2 µm: Coulomb slips
-    r, resp = residual(model, 1.0, u, sol.final.u, sol.final.state)
-    if tangential == "coulomb":
-        assert np.any(resp.status == fr.SLIP) and not np.allclose(resp.tangent, np.swapaxes(resp.tangent, 1, 2))
     # the residual at (u, level 1): the condensed solver reads the bulk part of r off (u, level)
     du = solver_module._linear_solver(model, kind)(model.points, resp.tangent, r, u[free], 1.0)
     Kt = (model.stiffness + interface_tangent(model.points, resp.tangent)).tocsr()[free][:, free]
@@ -274,16 +282,17 @@ def test_fixed_dofs_must_be_integer_indices(materials):
 
 
 def test_auto_strategy_by_interface_size(materials, monkeypatch):
-    """"auto" condenses while the interface has at most AUTO_CONDENSED_MAX dofs, else
-    refactors the sparse tangent; the two give the same solution (to the force tolerance)."""
+    """"auto" condenses (kept dense factor, GMRES) while the interface has at most
+    AUTO_CONDENSED_MAX dofs, else reuses the sparse factor (GMRES); the two give the same
+    solution (to the force tolerance)."""
     model = block_model(materials["free"])
     n_I = solver_module.interface_dofs(model)
     assert 0 < n_I <= 3 * model.points.n_points  # the rigid base: one side free (less the symmetry planes)
-    assert solver_module.linear_strategy(model) == "condensed"
+    assert solver_module.linear_strategy(model) == "condensed-krylov"
     assert solver_module.linear_strategy(model, "sparse") == "sparse"
     condensed = solve(model, [P0, 1.0])
     monkeypatch.setattr(solver_module, "AUTO_CONDENSED_MAX", n_I - 1)
-    assert solver_module.linear_strategy(model) == "sparse"
+    assert solver_module.linear_strategy(model) == "sparse-krylov"
     sparse = solve(model.with_material(model.material), [P0, 1.0])
     np.testing.assert_allclose(sparse.final.u, condensed.final.u, rtol=0, atol=1e-9 * np.max(np.abs(condensed.final.u)))
 

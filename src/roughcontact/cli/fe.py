@@ -3,6 +3,7 @@ deck with the statistical interface law), ``fe beam`` (example 9.1) and ``fe pun
 9.2), the two examples being decks of the same kind run through the same reader.
 
     roughcontact fe run MODEL.inp --interface LAW.yaml [--elements quadratic|cubic]
+        [--increments N] [--max-increments N]
         [--vtu OUT.pvd] [--quiet] [--json]
     roughcontact fe beam --m00 M --m20 M --m02 M --m40 M --m04 M [--E-star E]
         [--law elastic|elastoplastic --psi PSI] [--load 1962] [--initial-load 4.9]
@@ -40,6 +41,7 @@ __all__ = ["add_commands"]
 LAWS = ("elastic", "elastoplastic")
 TANGENTIAL = ("free", "stick", "coulomb")  # roughcontact.examples.beam.TANGENTIAL (checked by the tests)
 FAMILIES = ("quadratic", "cubic")  # roughcontact.fe.deck_mesh.FAMILIES
+LINEAR_SOLVERS = ("auto", "condensed", "sparse", "condensed-krylov", "sparse-krylov")  # roughcontact.fe.solver
 #: the friction update's status codes (roughcontact.interface.friction STICK, SLIP, OPEN) by name
 STATUS_NAMES = ("stick", "slip", "open")
 #: "incremental" is the (93) form with k_T at the end of the increment
@@ -65,8 +67,10 @@ def _int(text: str) -> int:
         raise argparse.ArgumentTypeError(f"must be an integer, got {describe(text)}") from None
 
 
-def _progress(step: int, n_steps: int, k: int, n: int, increment) -> None:
-    print(f"step {step}/{n_steps}, increment {k}/{n}: {increment.iterations} Newton iterations"
+def _progress(step: int, n_steps: int, k: int, n: int | None, increment) -> None:
+    """One line per converged increment (n None: a step whose increments grow, count unknown)."""
+    of = "" if n is None else f"/{n}"
+    print(f"step {step}/{n_steps}, increment {k}{of}: {increment.iterations} Newton iterations"
           f"{f', {increment.cutbacks} cut-backs' if increment.cutbacks else ''}", file=sys.stderr, flush=True)
 
 
@@ -96,7 +100,7 @@ def _solved(call):
 def _add_run(sub, parents) -> None:
     p = sub.add_parser(
         "run", parents=parents, help="your own model: a CalculiX/Abaqus deck with the statistical interface law",
-        description="Run a CalculiX/Abaqus input deck (C3D20 elements, *CONTACT PAIR between conforming faces) with "
+        description="Run a CalculiX/Abaqus input deck (C3D20 or C3D10 elements, *CONTACT PAIR between conforming faces) with "
         "the statistical normal law and the orthotropic hardening friction of LAW.yaml in place of each "
         "*SURFACE INTERACTION (docs/own-model.md).",
     )
@@ -105,20 +109,31 @@ def _add_run(sub, parents) -> None:
     p.add_argument("--elements", choices=FAMILIES, default="quadratic",
                    help="transition + interface elements on the contact faces: 21-node + 18-node (quadratic, "
                    "default) or 28-node + 32-node (cubic)")
+    p.add_argument("--increments", type=_int, default=None, metavar="N",
+                   help="every step in N fixed increments, in place of *STATIC's initial and maximum increments")
+    p.add_argument("--max-increments", dest="max_increments", type=_int, default=None, metavar="N",
+                   help="every step's maximum number of increments, in place of *STEP, INC=")
     p.add_argument("--vtu", type=output_file, default=None, metavar="OUT.pvd",
                    help="a ParaView series: OUT.pvd and OUT/<increment>.vtu, OUT/<increment>_interface.vtu")
     p.add_argument("--quiet", action="store_true", help="no progress lines on stderr")
+    p.add_argument("--solver", choices=LINEAR_SOLVERS, default="auto",
+                   help="the linear solves (roughcontact.fe.solver, docs/performance.md): auto (default), condensed, "
+                   "sparse, or either with its factor reused as a GMRES preconditioner (condensed-krylov, sparse-krylov)")
     p.set_defaults(func=_run_deck, render=_render_deck)
 
 
 def _run_deck(args) -> dict[str, Any]:
     from ..fe.deck_run import run_deck_file
+    from ..fe.solver import NewtonOptions
 
     if args.vtu is not None and args.vtu.suffix.lower() != ".pvd":
         raise CLIError(f"--vtu takes a .pvd file (the series), got {describe(str(args.vtu))}")
+    _check_run_increments(args)
     try:
         result = _solved(lambda: run_deck_file(args.deck, args.interface, args.elements,
-                                               progress=None if args.quiet else _progress))
+                                               NewtonOptions(linear_solver=args.solver),
+                                               progress=None if args.quiet else _progress,
+                                               increments=args.increments, max_increments=args.max_increments))
         if args.vtu is not None:
             from ..fe.pvd import write_series
 
@@ -131,6 +146,16 @@ def _run_deck(args) -> dict[str, Any]:
     out = result.summary()
     out["vtu"] = str(args.vtu) if args.vtu else None
     return out
+
+
+def _check_run_increments(args) -> None:
+    """--increments and --max-increments of fe run within 1 ... fe.deck.MAX_INCREMENTS."""
+    from ..fe.deck import MAX_INCREMENTS
+
+    for name in ("increments", "max_increments"):
+        value = getattr(args, name)
+        if value is not None and not 1 <= value <= MAX_INCREMENTS:
+            raise CLIError(f"--{name.replace('_', '-')} {value}: must lie in 1 ... {MAX_INCREMENTS}")
 
 
 def _render_deck(payload: dict[str, Any]) -> str:

@@ -45,36 +45,44 @@ one SuperLU factorisation of K + αP_I with the bulk dofs first (nested dissecti
 coordinates, :mod:`.ordering`) and I last gives the dense Schur complement
 S = K_II − K_IR K_RR⁻¹ K_RI from its trailing factor blocks; each iteration then factors the dense
 (S + K_int) (Cholesky when the interface tangent is symmetric, LU otherwise) and does two sparse
-solves (:class:`_Condensed`). ``"sparse"`` refactors the whole sparse tangent every iteration
-(SuperLU in the same nested-dissection order). ``"auto"`` (default) is "condensed" up to
-AUTO_CONDENSED_MAX = 6000 interface dofs and "sparse" beyond: the dense factorisation grows as
-n_I³/3 (0.5 s at 3750 on one core, 7 s at 8000 — a sparse factorisation of the 65 k-dof
-benchmark costs 20 s) and S needs 8 n_I² bytes. The Newton loop runs with ``blas_threads`` BLAS
-threads (1: on these dense systems a second thread costs more than it gains, and on a loaded
-machine far more). ``make bench-fe`` measures the strategies and the engine against CalculiX
-(docs/performance.md, "FE engine"; environment-notes.md records the choice of solver).
+solves (:class:`.linear_solvers.Condensed`). ``"sparse"`` refactors the whole sparse tangent
+every iteration (SuperLU in the same nested-dissection order). ``"condensed-krylov"`` and
+``"sparse-krylov"`` keep the factor (dense S + K_int, or sparse K_t) of an earlier iteration and
+reuse it as the right preconditioner of GMRES on the current tangent, refactoring only when GMRES
+needs more than REFACTOR_AFTER iterations or fails (:mod:`.linear_solvers`: the unsymmetric
+friction tangent is solved by GMRES as it is; the accepted residual ‖r − K_t du‖ ≤ 1e-12 ‖r‖,
+below Newton's force tolerance, so the iterations and the answer are the direct solve's).
+``"auto"`` (default) is "condensed-krylov" up to AUTO_CONDENSED_MAX = 3000 interface dofs and
+"sparse-krylov" beyond: condensing costs a dense S of 8 n_I² bytes and n_I³/3 per dense
+refactoring, the sparse strategy a factorisation of the whole sparse tangent per refactoring
+(docs/performance.md, "Large contact interfaces": a block on a base, 61.6 k dofs and 2166
+interface dofs, 35 s "condensed-krylov" against 164 s "sparse-krylov"; a plate on a base with
+full-face contact, 22.6 k dofs and 6534 interface dofs, 32 s "sparse-krylov" against 120-190 s).
+The Newton loop runs with ``blas_threads`` BLAS threads (1: on these dense systems a second
+thread costs more than it gains, and on a loaded machine far more). ``make bench-fe`` measures
+the strategies and the engine against CalculiX (docs/performance.md, "FE engine";
+environment-notes.md records the choice of solver).
 """
 
 from __future__ import annotations
 
 import math
 import time
-import warnings
 from dataclasses import dataclass, field
 from typing import Callable, Sequence
 
 import numpy as np
-import scipy.linalg as la
 import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 
 from ..interface import friction
-from . import assembly, ordering
+from . import assembly
 from .contact import InterfaceMaterial
-from .interface_points import InterfacePoints, interface_forces, interface_points, interface_tangent
+from .linear_solvers import Condensed, Sparse
+from .interface_points import InterfacePoints, interface_forces, interface_points
 from ..limits import describe
 
-__all__ = ["ContactModel", "NewtonOptions", "Increment", "Solution", "ConvergenceError", "LawRangeError", "solve"]
+__all__ = ["ContactModel", "NewtonOptions", "Increment", "Solution", "ConvergenceError", "LawRangeError", "solve",
+           "Stepping", "IncrementLimitError"]
 
 #: the round-off floor of a residual r = F − K u − f: this many ulps of |K| |u|
 _ROUNDOFF = 1e3 * np.finfo(float).eps
@@ -83,10 +91,10 @@ _DIVERGED = 1e6
 _DIVERGED_FLOOR = 1e3  # mm
 #: step-length reductions of the line search before the shortest step is taken as it is
 _BACKTRACKS = 8
-#: the linear strategies; "auto" takes "condensed" up to this many interface dofs, "sparse"
-#: beyond (module docstring, "Linear solves")
-LINEAR_SOLVERS = ("auto", "condensed", "sparse")
-AUTO_CONDENSED_MAX = 6000
+#: the linear strategies; "auto" takes "condensed-krylov" up to this many interface dofs,
+#: "sparse-krylov" beyond (module docstring, "Linear solves")
+LINEAR_SOLVERS = ("auto", "condensed", "sparse", "condensed-krylov", "sparse-krylov")
+AUTO_CONDENSED_MAX = 3000
 
 
 class ConvergenceError(RuntimeError):
@@ -280,108 +288,6 @@ class Solution:
 # ---------------------------------------------------------------------------------------------
 # linear solvers
 # ---------------------------------------------------------------------------------------------
-def _symmetric(D) -> bool:
-    return bool(np.allclose(D, np.swapaxes(D, -1, -2), rtol=1e-12, atol=0.0))
-
-
-def _dense_solve(A, b, symmetric: bool):
-    """A x = b for a dense A that may be overwritten: Cholesky when symmetric (LinAlgError when
-    not positive definite), else LU (LinAlgError on a zero pivot); no condition estimate (half
-    the time of scipy.linalg.solve on 2000 unknowns: the Newton loop checks its steps)."""
-    if symmetric:
-        return la.cho_solve(la.cho_factor(A, overwrite_a=True, check_finite=False), b, check_finite=False)
-    with warnings.catch_warnings():  # a zero pivot is raised just below, not warned about
-        warnings.simplefilter("ignore", la.LinAlgWarning)
-        lu, piv = la.lu_factor(A, overwrite_a=True, check_finite=False)
-    if not np.all(np.diagonal(lu)):
-        raise np.linalg.LinAlgError("singular matrix (a zero pivot)")
-    return la.lu_solve((lu, piv), b, check_finite=False)
-
-
-def _ordered(model: ContactModel, K, dofs) -> np.ndarray:
-    """A fill-reducing order of ``dofs`` (indices of the free dofs): nested dissection by the
-    node coordinates when the model has them, else reverse Cuthill–McKee (:mod:`.ordering`)."""
-    return ordering.dof_order(K, dofs, model.free // 3, model.coordinates)
-
-
-class _Sparse:
-    """The full tangent, refactored every iteration (SuperLU in a nested-dissection order;
-    diagonal pivoting when the tangent is symmetric)."""
-
-    def __init__(self, model: ContactModel):
-        free = model.free
-        K = model.stiffness[free][:, free].tocsr()
-        self.order = _ordered(model, K, np.arange(free.size))
-        self.K = K[self.order][:, self.order].tocsc()
-        self.B = model.points.B[:, free[self.order]].tocsr()
-
-    def __call__(self, points, D, r, u, level):
-        Kt = (self.K + interface_tangent(_restricted(points, self.B), D)).tocsc()
-        symmetric = _symmetric(D)
-        lu = spla.splu(Kt, permc_spec="NATURAL", options=dict(SymmetricMode=symmetric),
-                       **({"diag_pivot_thresh": 0.0} if symmetric else {}))
-        du = np.empty(r.size)
-        du[self.order] = lu.solve(r[self.order])
-        return du
-
-
-class _Condensed:
-    """The bulk condensed onto the interface dofs I (module docstring, "Linear solves").
-
-    Set-up, once: the free dofs are ordered bulk R first (nested dissection), I last, and
-    M = K + α P_I (α the mean diagonal of K_II, P_I the identity on I) is factored by SuperLU
-    in that order without pivoting (M is symmetric positive definite). With I last, the
-    trailing blocks of the factors give the Schur complement directly:
-    L_II U_II = S + αI, S = K_II − K_IR K_RR⁻¹ K_RI — one sparse factorisation instead of a
-    solve for every interface dof (4× less time on 16 k dofs, and the factor of the
-    interior is the same work).
-
-    Per iteration, with K_t,II = Bᵀ diag(w D) B on I: x = M⁻¹ r gives the condensed right-hand
-    side b_I = (S + αI) x_I = r_I − K_IR K_RR⁻¹ r_R; the dense (S + K_t,II) du_I = b_I (Cholesky
-    when the interface tangent is symmetric, LU otherwise); then
-    du = x + M⁻¹ [0; (S + αI)(du_I − x_I)] (its R part is K_RR⁻¹(r_R − K_RI du_I)). Two sparse
-    solves and one dense factorisation of n_I unknowns."""
-
-    def __init__(self, model: ContactModel):
-        free = model.free
-        K = model.stiffness[free][:, free].tocsr()
-        B = model.points.B[:, free].tocsc()
-        on_interface = np.diff(B.indptr) > 0
-        I, R = np.flatnonzero(on_interface), np.flatnonzero(~on_interface)
-        self.order = np.concatenate([_ordered(model, K, R), I])
-        self.n_R, self.n = R.size, free.size
-        self.B_I = B[:, I].tocsr()
-        alpha = float(np.mean(K.diagonal()[I])) if I.size else 1.0
-        M = K[self.order][:, self.order] + sp.diags(np.r_[np.zeros(R.size), np.full(I.size, alpha)])
-        self.lu = spla.splu(M.tocsc(), permc_spec="NATURAL", diag_pivot_thresh=0.0,
-                            options=dict(SymmetricMode=True))
-        identity = np.arange(self.n)
-        if not (np.array_equal(self.lu.perm_c, identity) and np.array_equal(self.lu.perm_r, identity)):
-            raise RuntimeError("SuperLU reordered the condensed system; use linear_solver='sparse'")
-        L_II = self.lu.L[R.size:, R.size:].toarray()  # one factor at a time: bounded memory
-        S_alpha = L_II @ self.lu.U[R.size:, R.size:].toarray()
-        del L_II
-        self.S_alpha = 0.5 * (S_alpha + S_alpha.T)  # symmetric up to round-off: make it exactly so
-        self.S = self.S_alpha - alpha * np.eye(I.size)
-
-    def __call__(self, points, D, r, u, level):
-        x = self.lu.solve(r[self.order])
-        x_I = x[self.n_R:]
-        A = self.S + interface_tangent(_restricted(points, self.B_I), D).toarray()
-        du_I = _dense_solve(A, self.S_alpha @ x_I, _symmetric(D))
-        correction = np.zeros(self.n)
-        correction[self.n_R:] = self.S_alpha @ (du_I - x_I)
-        du = np.empty(self.n)
-        du[self.order] = x + self.lu.solve(correction)
-        return du
-
-
-def _restricted(points: InterfacePoints, B) -> InterfacePoints:
-    """The same points with the jump operator restricted to some dofs."""
-    return InterfacePoints(B, points.weights, points.x, points.frames, points.element, points.block,
-                           points.nodes, points.rule)
-
-
 def interface_dofs(model: ContactModel) -> int:
     """The number of free dofs the interface touches (both sides): the size of the condensed
     dense system."""
@@ -389,18 +295,18 @@ def interface_dofs(model: ContactModel) -> int:
 
 
 def linear_strategy(model: ContactModel, kind: str = "auto") -> str:
-    """The linear strategy ``kind`` resolves to: "auto" is "condensed" while the interface has
-    at most AUTO_CONDENSED_MAX interface dofs, else "sparse" (module docstring)."""
+    """The linear strategy ``kind`` resolves to: "auto" is "condensed-krylov" while the interface
+    has at most AUTO_CONDENSED_MAX interface dofs, else "sparse-krylov" (module docstring)."""
     if kind != "auto":
         return kind
-    return "condensed" if interface_dofs(model) <= AUTO_CONDENSED_MAX else "sparse"
+    return "condensed-krylov" if interface_dofs(model) <= AUTO_CONDENSED_MAX else "sparse-krylov"
 
 
 def _linear_solver(model: ContactModel, kind: str):
     kind = linear_strategy(model, kind)
     key = ("linear", kind)
     if key not in model._cache:
-        model._cache[key] = (_Condensed if kind == "condensed" else _Sparse)(model)
+        model._cache[key] = (Condensed if kind.startswith("condensed") else Sparse)(model, kind.endswith("krylov"))
     return model._cache[key]
 
 
@@ -501,29 +407,65 @@ def _check_range(material: InterfaceMaterial, resp, increment: int, level: float
             "rebuild the table with a larger p_max (pressure_range)"))
 
 
+#: what a ConvergenceError's reason says when a cut-back would fall below Stepping.smallest
+BELOW_SMALLEST = "; a further cut-back would fall below the smallest step"
+
+
+class IncrementLimitError(ConvergenceError):
+    """A level not reached within its :attr:`Stepping.max_increments` converged sub-steps."""
+
+
+@dataclass(frozen=True)
+class Stepping:
+    """How :func:`solve` reaches one load level from the previous one (λ units, like the levels).
+
+    ``first``: the first sub-step (None: the whole way); after every converged sub-step the
+    step doubles, capped at ``largest`` (None: no cap) and landing exactly on the level; a
+    failed sub-step is halved, down to ``smallest`` (None: at most ``max_cutbacks`` halvings;
+    a halving below it raises ConvergenceError naming it). ``record``: every converged
+    sub-step is an :class:`Increment` of the solution (else only the level's last);
+    ``max_increments``: the most converged sub-steps the level may take (None: no limit;
+    more raise :class:`IncrementLimitError`). The default reaches the level as before."""
+
+    first: float | None = None
+    largest: float | None = None
+    smallest: float | None = None
+    record: bool = False
+    max_increments: int | None = None
+
+
+_WHOLE = Stepping()
+
+
 class _Failed(Exception):
     def __init__(self, residual, reason):
         self.residual, self.reason = residual, reason
 
 
 def solve(model: ContactModel, levels: Sequence[float], options: NewtonOptions | None = None,
-          progress: Callable[[int, int, Increment], None] | None = None) -> Solution:
+          progress: Callable[[int, int, Increment], None] | None = None,
+          stepping: Sequence[Stepping] | None = None) -> Solution:
     """Load the model through ``levels`` (load levels λ, in the unit of the load pattern, e.g.
     N), each reached from the previous converged state (the first from u = 0 and the
-    material's initial state). ``progress(k, n, increment)`` is called after every level."""
+    material's initial state), level k as ``stepping[k]`` says (:class:`Stepping`; default:
+    in one step, cut back when Newton fails). ``progress(k, n, increment)`` is called after
+    every recorded increment (k the level, 1-based)."""
     opts = options or NewtonOptions()
     if opts.blas_threads is None:
-        return _solve(model, levels, opts, progress)
+        return _solve(model, levels, opts, progress, stepping)
     from threadpoolctl import threadpool_limits
 
     with threadpool_limits(limits=opts.blas_threads, user_api="blas"):
-        return _solve(model, levels, opts, progress)
+        return _solve(model, levels, opts, progress, stepping)
 
 
-def _solve(model, levels, opts, progress) -> Solution:
+def _solve(model, levels, opts, progress, stepping=None) -> Solution:
     levels = [float(x) for x in levels]
     if not levels or not all(math.isfinite(x) for x in levels):
         raise ValueError("levels must be a non-empty sequence of finite load levels")
+    stepping = [_WHOLE] * len(levels) if stepping is None else list(stepping)
+    if len(stepping) != len(levels):
+        raise ValueError(f"stepping: {len(stepping)} entries for {len(levels)} levels")
     solver = _linear_solver(model, opts.linear_solver)
     u = np.zeros(model.stiffness.shape[0])
     state = model.material.initial_state(model.points.n_points)
@@ -531,8 +473,10 @@ def _solve(model, levels, opts, progress) -> Solution:
     rate = None
     out = []
     for k, target in enumerate(levels):
-        t0 = time.perf_counter()
+        t0, spec, done = time.perf_counter(), stepping[k], 0
         level, step, cutbacks, iterations = previous, target - previous, 0, 0
+        if spec.first is not None:
+            step = math.copysign(spec.first, step)
         while True:
             # the last sub-step lands exactly on the target (halved steps sum to it up to rounding)
             trial = target if abs(target - level) <= abs(step) * (1.0 + 1e-9) else level + step
@@ -542,8 +486,11 @@ def _solve(model, levels, opts, progress) -> Solution:
                 u_new, resp, residuals = _newton(model, solver, opts, trial, u, state, guess)
             except _Failed as fail:
                 cutbacks += 1
-                if cutbacks > opts.max_cutbacks:
+                if spec.smallest is None and cutbacks > opts.max_cutbacks:
                     raise ConvergenceError(k + 1, trial, fail.residual, fail.reason) from None
+                if spec.smallest is not None and abs(step) * 0.5 < spec.smallest:
+                    raise ConvergenceError(k + 1, trial, fail.residual, f"{fail.reason}{BELOW_SMALLEST} "
+                                           f"{spec.smallest:.6g} (to {abs(step) * 0.5:.6g})") from None
                 step *= 0.5
                 continue
             _check_range(model.material, resp, k + 1, trial, residuals[-1])
@@ -551,8 +498,21 @@ def _solve(model, levels, opts, progress) -> Solution:
             u, state, level = u_new, resp.state, trial
             iterations += len(residuals) - 1
             step *= 2.0  # a cut-back step grows back after every converged sub-step
+            if spec.largest is not None:
+                step = math.copysign(min(abs(step), spec.largest), step)
+            done += 1
             if level == target:
                 break
+            if spec.record:
+                inc = Increment(level, u.copy(), state.copy(), resp.tractions.copy(), resp.status.copy(),
+                                iterations, tuple(residuals), cutbacks, time.perf_counter() - t0)
+                out.append(inc)
+                t0, cutbacks, iterations = time.perf_counter(), 0, 0
+                if progress is not None:
+                    progress(k + 1, len(levels), inc)
+            if spec.max_increments is not None and done >= spec.max_increments:
+                raise IncrementLimitError(k + 1, level, residuals[-1], f"{done} increments reached level "
+                                          f"{level:.6g} of {target:.6g}: more than the {spec.max_increments} allowed")
         inc = Increment(level, u.copy(), state.copy(), resp.tractions.copy(), resp.status.copy(),
                         iterations, tuple(residuals), cutbacks, time.perf_counter() - t0)
         out.append(inc)

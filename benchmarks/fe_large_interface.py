@@ -1,0 +1,157 @@
+"""Large contact interfaces (issue 31): a plate on a base with full-face contact, run through
+``roughcontact fe run --solver S`` for each linear strategy of roughcontact.fe.solver.
+
+    .venv/bin/python benchmarks/fe_large_interface.py [--sizes 16x2x4 24x3x5] [--solvers ...]
+        [--friction] [--timeout 900] [--out results/benchmarks]
+
+The deck (CalculiX/Abaqus syntax, C3D20, mm, N): a steel plate 60 × 60 × 10 mm on a cast-iron
+base 60 × 60 × 20 mm (the plate's bottom on the base's top over the whole face, node for node);
+size NxAxB = N × N elements in plan, A layers through the plate, B through the base. The base
+is held at its bottom, the plate's top in its plane (u_x = u_y = 0) and pressed by 12 N/mm² on
+its third x ≥ 40 mm (an eccentric load). The interface: the statistical law of
+benchmarks/block_on_base.py (elastic, seated at 1e-3 N/mm²), frictionless or with ``--friction``
+Coulomb friction (μ = 0.2, k_T/k_N = 0.7: an unsymmetric tangent where points slip). 10 equal
+increments. Each run is a child process: wall and CPU time and peak RSS from os.wait4, the
+load average before and after (benchmarks/fe_block_on_base.py ``measure``). Writes
+fe_large_interface.json and .md under --out.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import shutil
+import sys
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+import block_on_base as bob  # noqa: E402
+from fe_block_on_base import measure  # noqa: E402
+from machine import info  # noqa: E402
+
+from roughcontact.fe.deck_writer import box_part, element_lines, id_lines, node_lines  # noqa: E402
+
+SOLVERS = ("sparse-krylov", "condensed-krylov", "sparse", "condensed")
+PLAN, PLATE_T, BASE_T = 60.0, 10.0, 20.0  # mm
+PRESSURE = 12.0  # N/mm² on the third x ≥ 40 mm of the plate's top
+INCREMENTS = 10
+
+
+def plate_on_base_deck(n: int, plate_layers: int, base_layers: int) -> str:
+    """The deck text (module docstring) of size n × n in plan."""
+    plan = np.linspace(0.0, PLAN, n + 1)
+    base = box_part(plan, plan, np.linspace(-BASE_T, 0.0, base_layers + 1))
+    plate = box_part(plan, plan, np.linspace(0.0, PLATE_T, plate_layers + 1),
+                     first_node=len(base.node_ids) + 1, first_element=len(base.element_ids) + 1)
+    top = plate.face_elements["ZMAX"]
+    centre_x = 0.5 * (plan[:-1] + plan[1:])[plate.element_ijk[top - plate.element_ids[0], 0]]
+    loaded = top[centre_x > 2.0 * PLAN / 3.0]
+
+    def lines(*blocks):
+        return "\n".join(line for b in blocks for line in b)
+
+    dt = 1.0 / INCREMENTS
+    return f"""** roughcontact benchmark: plate on base, full-face contact, {n}x{plate_layers}x{base_layers}
+*HEADING
+plate on base {n}x{plate_layers}x{base_layers}
+{lines(node_lines(base, "NALL", digits=12), node_lines(plate, digits=12)[1:])}
+{lines(element_lines(base, "BASE"), element_lines(plate, "PLATE"))}
+{lines(id_lines("*ELSET, ELSET=PLATEBOTTOMEL", plate.face_elements["ZMIN"]),
+       id_lines("*ELSET, ELSET=BASETOPEL", base.face_elements["ZMAX"]),
+       id_lines("*NSET, NSET=PLATETOP", plate.face_nodes["ZMAX"]),
+       id_lines("*NSET, NSET=BASEBOTTOM", base.face_nodes["ZMIN"]))}
+*MATERIAL, NAME=STEEL
+*ELASTIC
+2.1e5, 0.3
+*MATERIAL, NAME=CASTIRON
+*ELASTIC
+1.1e5, 0.26
+*SOLID SECTION, ELSET=PLATE, MATERIAL=STEEL
+*SOLID SECTION, ELSET=BASE, MATERIAL=CASTIRON
+*SURFACE, NAME=SLAVE, TYPE=ELEMENT
+PLATEBOTTOMEL, S1
+*SURFACE, NAME=MASTER, TYPE=ELEMENT
+BASETOPEL, S2
+*SURFACE INTERACTION, NAME=ROUGH
+*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=HARD
+*CONTACT PAIR, INTERACTION=ROUGH, TYPE=SURFACE TO SURFACE
+SLAVE, MASTER
+*BOUNDARY
+BASEBOTTOM, 1, 3, 0.0
+PLATETOP, 1, 2, 0.0
+*STEP, INC=1000
+*STATIC
+{dt:.12g}, 1.0, {dt * 2.0 ** -10:.6g}, {dt:.12g}
+*DLOAD
+{chr(10).join(f"{e}, P2, {PRESSURE:.12e}" for e in loaded)}
+*END STEP
+"""
+
+
+def law_yaml(friction: bool) -> str:
+    """LAW.yaml of the interaction ROUGH: block_on_base's law, frictionless or Coulomb."""
+    m = {k: f"{v:.6e}" for k, v in bob.MOMENTS.items()}
+    E_star = 1.0 / ((1 - 0.3 ** 2) / 2.1e5 + (1 - 0.26 ** 2) / 1.1e5)
+    return ("length_unit: mm\ninteractions:\n  ROUGH:\n"
+            f"    moments: {{m00: {m['m00']}, m20: {m['m20']}, m02: {m['m02']}, m40: {m['m40']}, m04: {m['m04']}, unit: um}}\n"
+            f"    lay_direction: [1, 0, 0]\n    E_star: {E_star!r}\n    law: elastic\n"
+            f"    seating_pressure: {bob.SEATING_PRESSURE!r}\n"
+            f"    friction: {'{coulomb: {mu: 0.2, kt_over_kn: 0.7}}' if friction else 'none'}\n")
+
+
+def run(size: str, solver: str, friction: bool, timeout: float, workdir: Path) -> dict:
+    n, a, b = (int(v) for v in size.split("x"))
+    deck, law = workdir / f"plate_{size}.inp", workdir / ("LAW_friction.yaml" if friction else "LAW.yaml")
+    deck.write_text(plate_on_base_deck(n, a, b))
+    law.write_text(law_yaml(friction))
+    exe = shutil.which("roughcontact") or str(Path(sys.executable).with_name("roughcontact"))
+    row = measure([exe, "fe", "run", str(deck), "--interface", str(law), "--solver", solver, "--json", "--quiet"],
+                  workdir, timeout)
+    out = {"size": size, "solver": solver, "friction": friction, **{k: row[k] for k in (
+        "exit", "timeout", "wall_s", "cpu_s", "peak_rss_mb", "load_before", "load_after")}}
+    if row["exit"] == 0:
+        res = json.loads(row["output"])
+        step = res["steps"][-1]
+        out.update(dofs=res["dofs"], interface_points=res["interface_points"],
+                   newton_iterations=res["newton_iterations"], cutbacks=res["cutbacks"],
+                   max_p_N=max(step["interface"]["p_N"]),
+                   mean_u_N_um=float(np.mean(step["interface"]["u_N_um"])))
+    else:
+        out["stderr"] = row["stderr"][-300:]
+    return out
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--sizes", nargs="+", default=["16x2x4"])
+    ap.add_argument("--solvers", nargs="+", default=list(SOLVERS))
+    ap.add_argument("--friction", action="store_true")
+    ap.add_argument("--timeout", type=float, default=900.0)
+    ap.add_argument("--out", type=Path, default=Path("results/benchmarks"))
+    args = ap.parse_args(argv)
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for size in args.sizes:
+            for solver in args.solvers:
+                row = run(size, solver, args.friction, args.timeout, Path(tmp))
+                rows.append(row)
+                print(json.dumps(row), flush=True)
+    args.out.mkdir(parents=True, exist_ok=True)
+    name = "fe_large_interface" + ("_friction" if args.friction else "")
+    (args.out / f"{name}.json").write_text(json.dumps({"machine": info(), "rows": rows}, indent=1))
+    lines = ["| size | dofs | interface points | solver | wall [s] | peak RSS [MB] | Newton iterations | load before/after |",
+             "|---|---:|---:|---|---:|---:|---:|---|"]
+    for r in rows:
+        wall = f"{r['wall_s']:.1f}" if r["exit"] == 0 else f"> {r['wall_s']:.0f} (stopped)" if r["timeout"] else "failed"
+        lines.append(f"| {r['size']} | {r.get('dofs', '')} | {r.get('interface_points', '')} | {r['solver']} | {wall} "
+                     f"| {r['peak_rss_mb']:.0f} | {r.get('newton_iterations', '')} | {r['load_before']}/{r['load_after']} |")
+    (args.out / f"{name}.md").write_text("\n".join(lines) + "\n")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
