@@ -14,6 +14,7 @@ deck with the statistical interface law), ``fe beam`` (example 9.1) and ``fe pun
         [--seating-pressure P0] [--E-star E] [--law elastic|elastoplastic] [--psi 0.35]
         [--tangential incremental|incremental-start|secant] [--increments 16] [--vtu FILE]
         [--quiet] [--json]
+    roughcontact fe msh2inp MODEL.msh -o MODEL.inp [--template FILE]   (a gmsh mesh as a deck: fe.msh)
 
 ``fe run``: docs/own-model.md (the deck subset, LAW.yaml, the JSON and the series). For the
 examples: moments in µm (the paper's surfaces), stresses in N/mm², lengths in mm. Progress
@@ -58,6 +59,7 @@ def add_commands(sub, parents) -> None:
     _add_run(fe_sub, parents[1:])
     _add_beam(fe_sub, parents)
     _add_punch(fe_sub, parents[1:])
+    _add_msh2inp(fe_sub, parents[1:])
 
 
 def _int(text: str) -> int:
@@ -177,6 +179,35 @@ def _render_deck(payload: dict[str, Any]) -> str:
     if payload.get("vtu"):
         lines.append(f"wrote {payload['vtu']}")
     return "\n".join(lines)
+
+
+def _add_msh2inp(sub, parents) -> None:
+    p = sub.add_parser("msh2inp", parents=parents, help="a gmsh .msh with physical groups as a deck's mesh, sets and surfaces",
+                       description="Write the *NODE, *ELEMENT (C3D10/C3D20), *NSET and *SURFACE lines of a gmsh mesh "
+                       "(physical groups: volumes, contact faces, supports; docs/own-model.md, From gmsh).")
+    p.add_argument("msh", type=Path, metavar="MODEL.msh", help="the gmsh mesh (gmsh -order 2)")
+    p.add_argument("-o", dest="out", type=output_file, required=True, metavar="MODEL.inp", help="the deck to write")
+    p.add_argument("--template", type=Path, default=None, metavar="FILE",
+                   help="text appended to the deck (materials, sections, contact pairs, steps)")
+    p.set_defaults(func=_msh2inp, render=lambda payload: f"wrote {payload['deck']}")
+
+
+def _msh2inp(args) -> dict[str, Any]:
+    from ..fe.msh import MISSING, MshError, msh_deck
+
+    try:
+        template = None if args.template is None else args.template.read_text()
+    except OSError as exc:
+        raise CLIError(f"--template {args.template}: cannot read it ({exc.strerror or exc})") from None
+    try:
+        text = msh_deck(args.msh, template)
+    except MshError as exc:
+        raise CLIError(str(exc)) from None
+    with writing(args.out, "-o") as path:
+        path.write_text(text)
+    if template is None:
+        print(f"note: {MISSING}", file=sys.stderr)
+    return {"deck": str(args.out), "template": None if args.template is None else str(args.template)}
 
 
 # ---------------------------------------------------------------------------------------------
