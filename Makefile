@@ -3,7 +3,7 @@
 #   make reproduce   create .venv (if missing), install, run the whole Snakemake workflow
 #   make test        create .venv (if missing), install, run the test suite (fast tier, < 3 min)
 #
-# Other targets: test-slow (the slow tier: mpmath references, workflow runs; CI: test-slow-ci), test-all, test-slurm,
+# Other targets: profile (CPU and wall time of a reproduction by job, the critical path), test-slow (the slow tier: mpmath references, workflow runs; CI: test-slow-ci), test-all, test-slurm,
 # bench (speed against error, full mode), bench-fe (FE: block-on-base deck vs CalculiX, linear solvers, large contact interfaces), verify (verification report and verdict gate only),
 # docs (API reference, Sphinx, warnings are errors), dry-run, ci (.ci/run), clean (generated results),
 # distclean (+ .venv).
@@ -25,7 +25,10 @@ CORES  ?= all
 # one worker idle at the end)
 WORKERS ?= auto
 PYTEST := $(PY) -m pytest -n $(WORKERS) --dist worksteal
-SNAKEMAKE := $(BIN)/snakemake --workflow-profile workflow/profiles/default --cores $(CORES)
+# --scheduler greedy: the default ILP scheduler builds a pulp model and runs the cbc solver on
+# every pass of Snakemake's scheduling loop; on 2 cores the greedy choice is as good and its
+# CPU is negligible (the Snakemake process's own CPU: `make profile`)
+SNAKEMAKE := $(BIN)/snakemake --workflow-profile workflow/profiles/default --cores $(CORES) --scheduler greedy
 # Re-install only when the package metadata changes (the install is editable: source edits
 # need no re-install).
 STAMP  := $(VENV)/.installed
@@ -35,7 +38,7 @@ MAKE_START := $(shell date +%s)
 VENV_EXISTED := $(wildcard $(PY))
 LOAD_START := $(shell cut -d' ' -f1-3 /proc/loadavg 2>/dev/null)
 
-.PHONY: help venv reproduce bench bench-fe test test-slow test-slow-ci test-all test-slurm verify docs dry-run ci clean distclean
+.PHONY: help venv reproduce profile bench bench-fe test test-slow test-slow-ci test-all test-slurm verify docs dry-run ccx-build ci clean distclean
 
 help:
 	@sed -n '3,9p' Makefile
@@ -67,6 +70,12 @@ reproduce: $(STAMP)
 	$(PY) workflow/scripts/record_wall_time.py --seconds $$(( $$(date +%s) - start )) --cores $(CORES) --fresh $$fresh \
 	    --setup $(VENV)/.setup.json --make-start $(MAKE_START) --load-start "$(LOAD_START)"
 
+# the profile of a whole reproduction from scratch (results/, paper_figures/, logs/ and numba's
+# cache removed; .venv/ kept): CPU and wall time by job, by rule and by phase, and the critical
+# path, in results/benchmarks/workflow_profile.md and .csv (benchmarks/workflow_profile.py)
+profile: $(STAMP)
+	$(PY) benchmarks/workflow_profile.py
+
 # speed against error, full mode (~5 min on 2 cores; the naive tplquad, 10-60 min per quantity,
 # runs only where benchmarks/data/tplquad.json has no record; mpmath references are cached)
 bench: $(STAMP)
@@ -74,11 +83,13 @@ bench: $(STAMP)
 
 # FE: the block-on-base deck in CalculiX and in the engine, refined 1x, 2x, 3x (3.4k-67k dofs;
 # results/benchmarks/fe_block_on_base/; the 3x ccx run takes most of the time), then the linear
-# strategies (sparse refactorisation vs condensed bulk) on the beam, coarse to fine meshes
+# strategies (sparse refactorisation vs condensed bulk) on the beam, coarse to fine meshes, the
+# large contact interface (plate on base) and C3D10 against C3D20 in both codes
 bench-fe: $(STAMP)
 	$(PY) benchmarks/fe_block_on_base.py
 	$(PY) benchmarks/fe_linear_solvers.py
 	$(PY) benchmarks/fe_large_interface.py
+	$(PY) benchmarks/fe_tetra_vs_ccx.py
 
 # pyproject.toml deselects the mpmath- and slow-marked tests by default ("fast by default")
 # numba's on-disk cache filled before the workers start (roughcontact.warmup: on a fresh clone
@@ -120,6 +131,12 @@ verify: $(STAMP)
 # the API reference from the docstrings (docs/_build/html; -W: a warning fails the build)
 docs: $(STAMP)
 	$(BIN)/sphinx-build -q -W --keep-going -b html docs docs/_build/html
+
+# CalculiX 2.20 with the interface law as a user element (roughcontact ccx build, docs/ccx.md):
+# 3-15 min the first time, then cached outside the clone (~/.cache/roughcontact); where the build
+# tools or the source are absent it says in one line what to install, and what needs it skips
+ccx-build: $(STAMP)
+	$(BIN)/roughcontact ccx build || echo "ccx-build: no CalculiX with the law (the line above says why); tests/ccx and the scene ccx_friction skip"
 
 dry-run: $(STAMP)
 	$(BIN)/snakemake -n all

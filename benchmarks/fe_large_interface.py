@@ -6,7 +6,10 @@
 
 The deck (CalculiX/Abaqus syntax, C3D20, mm, N): a steel plate 60 × 60 × 10 mm on a cast-iron
 base 60 × 60 × 20 mm (the plate's bottom on the base's top over the whole face, node for node);
-size NxAxB = N × N elements in plan, A layers through the plate, B through the base. The base
+size NxAxB = N × N elements in plan, A layers through the plate, B through the base, or
+NXxNYxAxB for NX × NY in plan (60 × 60·NY/NX mm; 24x32x8x12 is issue 31's acceptance size:
+209 022 dofs, 2417 contact nodes; 12x16x4x6 its half refinement, 29 418 dofs). The nodes of
+the loaded faces are the NSET LOADED; their mean u_z is ``loaded_mean_uz_mm`` in the output. The base
 is held at its bottom, the plate's top in its plane (u_x = u_y = 0) and pressed by 12 N/mm² on
 its third x ≥ 40 mm (an eccentric load). The interface: the statistical law of
 benchmarks/block_on_base.py (elastic, seated at 1e-3 N/mm²), frictionless or with ``--friction``
@@ -41,15 +44,31 @@ PRESSURE = 12.0  # N/mm² on the third x ≥ 40 mm of the plate's top
 INCREMENTS = 10
 
 
-def plate_on_base_deck(n: int, plate_layers: int, base_layers: int) -> str:
-    """The deck text (module docstring) of size n × n in plan."""
+def parse_size(size: str) -> tuple[int, int, int, int]:
+    """NxAxB (N × N in plan) or NXxNYxAxB (NX × NY in plan) → (NX, NY, A, B)."""
+    v = [int(x) for x in size.split("x")]
+    if len(v) == 3:
+        v = [v[0], v[0], v[1], v[2]]
+    if len(v) != 4 or min(v) < 1:
+        raise ValueError(f"--sizes {size!r}: expected NxAxB or NXxNYxAxB with positive integers")
+    return tuple(v)
+
+
+def plate_on_base_deck(n: int, plate_layers: int, base_layers: int, ny: int | None = None) -> str:
+    """The deck text (module docstring) of size n × ny in plan (ny = n by default); the plan
+    is PLAN mm along x and PLAN·ny/n along y (square elements in plan)."""
+    ny = n if ny is None else ny
     plan = np.linspace(0.0, PLAN, n + 1)
-    base = box_part(plan, plan, np.linspace(-BASE_T, 0.0, base_layers + 1))
-    plate = box_part(plan, plan, np.linspace(0.0, PLATE_T, plate_layers + 1),
+    plan_y = np.linspace(0.0, PLAN * ny / n, ny + 1)
+    base = box_part(plan, plan_y, np.linspace(-BASE_T, 0.0, base_layers + 1))
+    plate = box_part(plan, plan_y, np.linspace(0.0, PLATE_T, plate_layers + 1),
                      first_node=len(base.node_ids) + 1, first_element=len(base.element_ids) + 1)
     top = plate.face_elements["ZMAX"]
     centre_x = 0.5 * (plan[:-1] + plan[1:])[plate.element_ijk[top - plate.element_ids[0], 0]]
     loaded = top[centre_x > 2.0 * PLAN / 3.0]
+    # the nodes of the loaded faces (their mean u_z: the result compared between refinements)
+    loaded_nodes = np.unique(plate.connectivity[loaded - plate.element_ids[0]])
+    loaded_nodes = loaded_nodes[plate.coords[loaded_nodes - plate.node_ids[0], 2] == PLATE_T]
 
     def lines(*blocks):
         return "\n".join(line for b in blocks for line in b)
@@ -63,7 +82,8 @@ plate on base {n}x{plate_layers}x{base_layers}
 {lines(id_lines("*ELSET, ELSET=PLATEBOTTOMEL", plate.face_elements["ZMIN"]),
        id_lines("*ELSET, ELSET=BASETOPEL", base.face_elements["ZMAX"]),
        id_lines("*NSET, NSET=PLATETOP", plate.face_nodes["ZMAX"]),
-       id_lines("*NSET, NSET=BASEBOTTOM", base.face_nodes["ZMIN"]))}
+       id_lines("*NSET, NSET=BASEBOTTOM", base.face_nodes["ZMIN"]),
+       id_lines("*NSET, NSET=LOADED", loaded_nodes))}
 *MATERIAL, NAME=STEEL
 *ELASTIC
 2.1e5, 0.3
@@ -104,9 +124,9 @@ def law_yaml(friction: bool) -> str:
 
 
 def run(size: str, solver: str, friction: bool, timeout: float, workdir: Path) -> dict:
-    n, a, b = (int(v) for v in size.split("x"))
+    n, ny, a, b = parse_size(size)
     deck, law = workdir / f"plate_{size}.inp", workdir / ("LAW_friction.yaml" if friction else "LAW.yaml")
-    deck.write_text(plate_on_base_deck(n, a, b))
+    deck.write_text(plate_on_base_deck(n, a, b, ny))
     law.write_text(law_yaml(friction))
     exe = shutil.which("roughcontact") or str(Path(sys.executable).with_name("roughcontact"))
     row = measure([exe, "fe", "run", str(deck), "--interface", str(law), "--solver", solver, "--json", "--quiet"],
@@ -119,7 +139,8 @@ def run(size: str, solver: str, friction: bool, timeout: float, workdir: Path) -
         out.update(dofs=res["dofs"], interface_points=res["interface_points"],
                    newton_iterations=res["newton_iterations"], cutbacks=res["cutbacks"],
                    max_p_N=max(step["interface"]["p_N"]),
-                   mean_u_N_um=float(np.mean(step["interface"]["u_N_um"])))
+                   mean_u_N_um=float(np.mean(step["interface"]["u_N_um"])),
+                   loaded_mean_uz_mm=float(np.mean(np.asarray(step["node_sets"]["LOADED"]["u"]).reshape(-1, 3)[:, 2])))
     else:
         out["stderr"] = row["stderr"][-300:]
     return out
@@ -143,12 +164,15 @@ def main(argv=None) -> int:
     args.out.mkdir(parents=True, exist_ok=True)
     name = "fe_large_interface" + ("_friction" if args.friction else "")
     (args.out / f"{name}.json").write_text(json.dumps({"machine": info(), "rows": rows}, indent=1))
-    lines = ["| size | dofs | interface points | solver | wall [s] | peak RSS [MB] | Newton iterations | load before/after |",
-             "|---|---:|---:|---|---:|---:|---:|---|"]
+    lines = ["| size | dofs | interface points | solver | wall [s] | CPU [s] | peak RSS [MB] | Newton iterations "
+             "| mean u_z of LOADED [mm] | load before/after |",
+             "|---|---:|---:|---|---:|---:|---:|---:|---:|---|"]
     for r in rows:
         wall = f"{r['wall_s']:.1f}" if r["exit"] == 0 else f"> {r['wall_s']:.0f} (stopped)" if r["timeout"] else "failed"
+        uz = f"{r['loaded_mean_uz_mm']:.7e}" if "loaded_mean_uz_mm" in r else ""
         lines.append(f"| {r['size']} | {r.get('dofs', '')} | {r.get('interface_points', '')} | {r['solver']} | {wall} "
-                     f"| {r['peak_rss_mb']:.0f} | {r.get('newton_iterations', '')} | {r['load_before']}/{r['load_after']} |")
+                     f"| {r['cpu_s']:.1f} | {r['peak_rss_mb']:.0f} | {r.get('newton_iterations', '')} | {uz} "
+                     f"| {r['load_before']}/{r['load_after']} |")
     (args.out / f"{name}.md").write_text("\n".join(lines) + "\n")
     return 0
 

@@ -13,7 +13,10 @@ the Dataset's attributes and the report), so its cost is that of its nodes, not 
 separations. The full 10⁶-point sweep (50 × 50 × 400) takes many minutes at the measured
 speed, so by default a sub-grid is timed (--m00 5 --psi 5: 10⁴ points, the same ranges) and
 the full size extrapolated linearly in the number of (m00, ψ) combinations (at 400 separations
-per curve, as timed); pass the full sizes to measure it. Wall time
+per curve, as timed); pass the full sizes to measure it. With ``--route table`` the cost is one shared
+summit-table build per m00 (all ψ of a surface together, integrals.summit_table.build_tables)
+plus a convolution per curve, so the linear extrapolation in ψ overstates it: time the full ψ
+axis (``--m00 2 --psi 50``), extrapolated in m00 alone. Wall time
 (time.perf_counter), CPU time and peak resident memory (resource.getrusage, RUSAGE_SELF, of this
 process, which holds the whole Dataset) are recorded with the load average.
 """
@@ -41,7 +44,7 @@ FULL = (50, 50, 400)
 GOAL_SECONDS = 60.0
 
 
-def spec(n_m00: int, n_psi: int, n_s: int, accuracy: str) -> sweep.SweepSpec:
+def spec(n_m00: int, n_psi: int, n_s: int, accuracy: str, route: str = "tau") -> sweep.SweepSpec:
     return sweep.SweepSpec(
         axes={"m00": np.geomspace(0.02, 1.0, n_m00), "psi": np.geomspace(0.05, 50.0, n_psi)},
         s=np.linspace(-1.0, 6.0, n_s),
@@ -49,12 +52,13 @@ def spec(n_m00: int, n_psi: int, n_s: int, accuracy: str) -> sweep.SweepSpec:
         accuracy=accuracy,
         with_elastic=False,
         units={"length": "um", "stress": "N/mm^2"},
+        route=route,
     )
 
 
-def run(n_m00: int, n_psi: int, n_s: int, accuracy: str) -> dict:
-    sp = spec(n_m00, n_psi, n_s, accuracy)
-    sweep.run_sweep(spec(1, 1, 2, accuracy))  # compile / load the kernels outside the timing
+def run(n_m00: int, n_psi: int, n_s: int, accuracy: str, route: str = "tau") -> dict:
+    sp = spec(n_m00, n_psi, n_s, accuracy, route)
+    sweep.run_sweep(spec(1, 4, 2, accuracy, route))  # compile / load the kernels outside the timing (4 ψ: the shared build)
     load0 = os.getloadavg()
     t0, c0 = time.perf_counter(), time.process_time()
     ds = sweep.run_sweep(sp)
@@ -65,7 +69,7 @@ def run(n_m00: int, n_psi: int, n_s: int, accuracy: str) -> dict:
     scale = (FULL[0] * FULL[1]) / (n_m00 * n_psi) * FULL[2] / n_s
     extrapolated = wall * scale
     return {
-        "grid": [n_m00, n_psi, n_s], "points": points, "accuracy": accuracy,
+        "grid": [n_m00, n_psi, n_s], "points": points, "accuracy": accuracy, "route": route,
         "wall_seconds": wall, "cpu_seconds": cpu, "peak_rss_mib": peak_mib,
         "seconds_per_point": wall / points, "all_finite": finite,
         "loadavg_before": [round(x, 2) for x in load0], "loadavg_after": [round(x, 2) for x in os.getloadavg()],
@@ -86,7 +90,8 @@ def markdown(r: dict, info: dict) -> str:
     measured = r["points"] == r["full_points"]
     lines = [
         f"m00 × ψ × s = {' × '.join(map(str, r['grid']))} = {r['points']:,} points through "
-        f"`roughcontact.contact.sweep.run_sweep` (preset \"{r['accuracy']}\", elastic model off), "
+        f"`roughcontact.contact.sweep.run_sweep` (preset \"{r['accuracy']}\", route \"{r['route']}\", "
+        "elastic model off), "
         f"{info['cores']} cores ({info['numba_threads']} numba threads): wall {r['wall_seconds']:.1f} s "
         f"(CPU {r['cpu_seconds']:.1f} s), {r['seconds_per_point'] * 1e3:.2f} ms per point, peak RSS "
         f"{r['peak_rss_mib']:.0f} MiB, load average {r['loadavg_before']} → {r['loadavg_after']}. "
@@ -95,15 +100,18 @@ def markdown(r: dict, info: dict) -> str:
         f"(checked to {r['s_interpolation_rtol']:.0e}).",
         "",
         ("Measured at full size." if measured else
-         f"The 10⁶-point sweep (50 × 50 × 400) extrapolates to **{r['full_wall_seconds_extrapolated'] / 60:.0f} min** "
+         f"The 10⁶-point sweep (50 × 50 × 400) extrapolates to **{r['full_wall_seconds_extrapolated']:.0f} s** "
          "(linear in the number of (m00, ψ) combinations and of s; the sub-grid spans the same ranges); "
-         f"from the CPU time, which the machine's load barely changes: {r['full_cpu_seconds_extrapolated'] / 60:.0f} "
-         f"min of CPU, ≈ {r['full_cpu_seconds_extrapolated'] / info['cores'] / 60:.0f} min on {info['cores']} idle "
+         f"from the CPU time, which the machine's load barely changes: {r['full_cpu_seconds_extrapolated']:.0f} "
+         f"s of CPU, ≈ {r['full_cpu_seconds_extrapolated'] / info['cores']:.0f} s on {info['cores']} idle "
          "cores."),
         f"Goal ≤ {r['goal_seconds']:.0f} s: **{'met' if r['goal_met'] else 'not met'}**"
-        + ("" if r["goal_met"] else " — the elasto-plastic integrator costs ~2–10 ms per separation on one "
-           "thread (summits straddling first yield need a numerical t-integral; docs/performance.md), "
-           f"and each curve needs {r['model_evaluations'] / (r['grid'][0] * r['grid'][1]):.0f} evaluations."),
+        + ("" if r["goal_met"] else (
+            " at this load (the table route's cost is one shared summit-table build per m00: "
+            "benchmarks/ep_cost.py)" if r["route"] == "table" else
+            " — the elasto-plastic integrator costs ~2–10 ms per separation on one "
+            "thread (summits straddling first yield need a numerical t-integral; docs/performance.md), "
+            f"and each curve needs {r['model_evaluations'] / (r['grid'][0] * r['grid'][1]):.0f} evaluations.")),
     ]
     return "\n".join(lines)
 
@@ -114,9 +122,11 @@ def main(argv=None) -> int:
     ap.add_argument("--psi", type=int, default=5)
     ap.add_argument("--s", type=int, default=400)
     ap.add_argument("--accuracy", default="plot")
+    ap.add_argument("--route", default="tau", choices=("tau", "table"),
+                    help="production route of contact.elastoplastic (table: one shared summit-table build per surface)")
     ap.add_argument("--json", default="results/benchmarks/sweep_throughput/results.json")
     args = ap.parse_args(argv)
-    r = run(args.m00, args.psi, args.s, args.accuracy)
+    r = run(args.m00, args.psi, args.s, args.accuracy, args.route)
     info = machine.info()
     r["machine"] = info
     r["markdown"] = markdown(r, info)

@@ -29,6 +29,7 @@ LAYERS = [
     {"contact"},
     {"interface", "bem"},
     {"fe"},
+    {"ccx"},
     {"examples"},
     {"plots"},
     {"paper"},

@@ -137,7 +137,7 @@ def test_every_command_runs_without_the_workflow_extra(tmp_path):
     from roughcontact.cli import build_parser
 
     commands = build_parser()._subparsers._group_actions[0].choices
-    covered = {name.split()[0] for name in COMMANDS} | {"plot", "bem"}  # plot draws, bem needs [bem]: below
+    covered = {name.split()[0] for name in COMMANDS} | {"plot", "bem", "ccx"}  # plot, bem, ccx: below
     assert set(commands) <= covered, f"add a run of {set(commands) - covered} to COMMANDS"
     path = _height_map(tmp_path)
     outputs = {}
@@ -157,6 +157,17 @@ def test_every_command_runs_without_the_workflow_extra(tmp_path):
     r = _cli(["bem", str(path), "--dx", "0.5", "--E-star", "1.14e5", "--pressure", "1"], prelude=HIDE_EXTRAS)
     assert r.returncode == 2 and len(r.stderr.strip().splitlines()) == 1, r.stderr[-2000:]
     assert "skipped: [bem] not installed — pip install '.[bem]'" in r.stderr and r.stdout == ""
+    # `ccx` runs the ccx that `ccx build` made (CI makes it first): found and run, or one line
+    from roughcontact.ccx.build import find_build
+
+    deck, laws = (str(ROOT / "docs" / "examples" / name) for name in ("block.inp", "block.yaml"))
+    r = _cli(["ccx", "run", deck, "--interface", laws, "--quiet", "--json"], prelude=HIDE_EXTRAS.replace("'yaml', ", ""))
+    if find_build() is None:
+        assert r.returncode == 2 and "run `roughcontact ccx build` first" in r.stderr, r.stderr[-2000:]
+    else:
+        assert r.returncode == 0 and json.loads(r.stdout)["interface_points"] == 36, r.stderr[-2000:]
+        r = _cli(["ccx", "build", "--quiet", "--json"], prelude=HIDE_EXTRAS)  # cached: returns at once
+        assert r.returncode == 0 and json.loads(r.stdout)["cached"], r.stderr[-2000:]
 
 
 # matplotlib absent: one line naming the install, tests/plots/test_plots.py::test_without_matplotlib_one_line

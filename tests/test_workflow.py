@@ -366,7 +366,7 @@ def test_fe_calculix_rule_succeeds_without_ccx(tmp_path, hide_programs):
     for case in CONFIG["calculix"]["cases"]:
         (clone / "results" / "fe" / "beam" / f"{CONFIG['calculix']['family']}-{case}").mkdir(parents=True)
     r = subprocess.run([*SNAKEMAKE, "--cores", "1", "paper_figures/calculix.md", "--allowed-rules", "fe_calculix",
-                        "code_fingerprint"],
+                        "code_fingerprint", "numba_warmup"],
                        cwd=clone, capture_output=True, text=True, timeout=300, env=hide_programs("ccx"))
     assert r.returncode == 0, r.stdout + r.stderr
     from roughcontact.paper import calculix, verify
@@ -374,3 +374,26 @@ def test_fe_calculix_rule_succeeds_without_ccx(tmp_path, hide_programs):
     assert (clone / "results" / "calculix" / "SKIPPED.txt").read_text().startswith("skipped: ccx not installed")
     assert calculix.skipped_line() in (clone / "paper_figures" / "calculix.md").read_text()
     assert verify.checks_from_csv((clone / "results" / "verify" / "calculix.checks.csv").read_text()) == []
+
+
+def test_ccx_friction_rule_succeeds_without_the_build(tmp_path, monkeypatch):
+    """Without the ccx built with the law (an empty cache: ROUGHCONTACT_CCX_CACHE) the scene
+    writes every output, no checks, the one line of why; it does not build (minutes)."""
+    import os
+
+    clone = fresh_clone(tmp_path)
+    env = {**os.environ, "ROUGHCONTACT_CCX_CACHE": str(tmp_path / "no-cache")}
+    r = subprocess.run([*SNAKEMAKE, "--cores", "1", "paper_figures/ccx_friction.md", "--allowed-rules", "ccx_friction",
+                        "code_fingerprint"], cwd=clone, capture_output=True, text=True, timeout=300, env=env)
+    assert r.returncode == 0, r.stdout + r.stderr
+    from roughcontact.paper import ccx_friction, verify
+
+    line = (clone / "results" / "ccx_friction" / "SKIPPED.txt").read_text()
+    assert line.startswith("skipped: ccx-with-the-law not installed") and "make ccx-build" in line
+    assert not (tmp_path / "no-cache").exists()  # nothing was built
+    assert "skipped: ccx-with-the-law not installed" in (clone / "paper_figures" / "ccx_friction.md").read_text()
+    assert verify.checks_from_csv((clone / "results" / "verify" / "ccx_friction.checks.csv").read_text()) == []
+    # and VERIFICATION.md, the gate and the gallery count the scene as skipped
+    monkeypatch.setenv("ROUGHCONTACT_CCX_CACHE", str(tmp_path / "no-cache"))
+    assert ccx_friction.installed_tools({"expected_checks": {"ccx_friction": {"checks": 12,
+                                                                              "requires": ccx_friction.TOOL}}}) == []

@@ -9,6 +9,7 @@ tangent; Coulomb: unsymmetric) and on a frictional plate-on-base deck (benchmark
 from __future__ import annotations
 
 import sys
+import time
 from pathlib import Path
 
 import numpy as np
@@ -18,6 +19,7 @@ import scipy.sparse.linalg as spla
 
 from roughcontact.fe import solver as solver_module
 from roughcontact.fe.interface_points import interface_tangent
+from roughcontact.fe import linear_solvers as ls
 from roughcontact.fe.linear_solvers import KRYLOV_RTOL, MAX_KRYLOV, ReusedFactor, gmres_right
 from roughcontact.fe.solver import NewtonOptions, solve
 from roughcontact.interface import friction as fr
@@ -135,3 +137,118 @@ def test_cli_solver_choices_are_the_solvers():
     from roughcontact.cli import fe as cli_fe
 
     assert cli_fe.LINEAR_SOLVERS == solver_module.LINEAR_SOLVERS
+
+
+def test_adaptive_budget_weighs_a_factorisation_against_iterations():
+    """Budget None: a factorisation that costs ≫ an iteration lets GMRES run up to
+    MAX_KRYLOV_CAP iterations (stale beyond half of them); a cheap one keeps the minimum
+    MAX_KRYLOV / REFACTOR_AFTER; fixed integers are kept as given."""
+    A, b = _unsymmetric(200, 5)
+
+    def factorise(delay):
+        def f():
+            time.sleep(delay)
+            return spla.splu(A).solve
+        return f
+
+    slow = ReusedFactor()
+    slow.solve(A.__matmul__, b, factorise(0.5))  # 0.5 s against ~1e-4 s per iteration
+    assert slow.max_iterations == ls.MAX_KRYLOV_CAP and slow.refactor_after == ls.MAX_KRYLOV_CAP // 2
+    fast = ReusedFactor()
+    fast.solve(A.__matmul__, b, factorise(0.0))
+    assert MAX_KRYLOV <= fast.max_iterations < ls.MAX_KRYLOV_CAP
+    assert fast.refactor_after == max(ls.REFACTOR_AFTER, fast.max_iterations // 2)
+    fixed = ReusedFactor(refactor_after=3, max_iterations=7)
+    fixed.solve(A.__matmul__, b, factorise(0.5))
+    assert (fixed.refactor_after, fixed.max_iterations) == (3, 7)
+
+
+def test_krylov_accepts_the_direct_solves_own_accuracy():
+    """The accepted residual is max(rtol, ρ_f): ρ_f the relative residual of the direct solve
+    right after the factorisation, recomputed here independently."""
+    A, b = _unsymmetric(300, 7)
+    reuse = ReusedFactor()
+    x = reuse.solve(A.__matmul__, b, lambda: spla.splu(A).solve)
+    assert reuse.floor == pytest.approx(np.linalg.norm(b - A @ x) / np.linalg.norm(b), rel=1e-12, abs=0.0)
+    assert reuse.floor < 1e-14  # cond(A) ~ 10: the direct solve is accurate to round-off
+
+
+def test_gmres_restarts_on_the_recomputed_residual():
+    """A preconditioner with a tiny error ε = 1e-9 in one solve of three makes the Arnoldi
+    estimate drift from the true residual; with restarts (iterative refinement) the recomputed
+    residual still meets the target, and x matches the direct solve."""
+    A, b = _unsymmetric(300, 9)
+    lu = spla.splu(A)
+    calls = []
+
+    def noisy(v):
+        calls.append(1)
+        x = lu.solve(v)
+        return x * (1.0 + 1e-9) if len(calls) % 3 == 1 else x
+    x, its = gmres_right(A.__matmul__, noisy, b, KRYLOV_RTOL, 30)
+    assert x is not None and np.linalg.norm(b - A @ x) <= KRYLOV_RTOL * np.linalg.norm(b)
+    np.testing.assert_allclose(x, spla.spsolve(A, b), rtol=0, atol=1e-10 * np.max(np.abs(x)))
+
+
+BACKENDS = ["superlu", pytest.param("pardiso", marks=pytest.mark.skipif(
+    not ls.pardiso_available(), reason="pypardiso (optional) not installed"))]
+
+
+@pytest.mark.parametrize("backend", BACKENDS)
+@pytest.mark.parametrize("krylov", [False, True])
+@pytest.mark.parametrize("tangential", ["free", "coulomb"])
+def test_sparse_backends_solve_the_tangent_system(backend, krylov, tangential, materials):
+    """Each sparse factorisation, direct or kept for GMRES, against spsolve of K_t du = r on the
+    slipped block (Coulomb: the unsymmetric tangent, factored as it is)."""
+    model, u, r, resp = slipped_state(materials, tangential)
+    free = model.free
+    linear = ls.Sparse(model, krylov, backend)
+    assert linear.backend == backend
+    if krylov:
+        linear(model.points, 0.5 * resp.tangent, r, u[free], 1.0)  # the kept factor: another tangent
+    du = linear(model.points, resp.tangent, r, u[free], 1.0)
+    Kt = (model.stiffness + interface_tangent(model.points, resp.tangent)).tocsr()[free][:, free]
+    ref = spla.spsolve(Kt.tocsc(), r)
+    if tangential == "coulomb":
+        assert not np.allclose(Kt.toarray(), Kt.toarray().T, rtol=1e-9, atol=0.0)  # really unsymmetric
+    # cond(K_t) ≈ 1e3 (tests/fe/test_solver.py): 1e-12 of the residual → 1e-9 of du
+    np.testing.assert_allclose(du, ref, rtol=0, atol=1e-9 * np.max(np.abs(ref)))
+
+
+@pytest.mark.skipif(not ls.pardiso_available(), reason="pypardiso (optional) not installed")
+def test_pardiso_refuses_a_singular_tangent(materials):
+    """No supports and an open interface (zero tangent): K_t singular, LinAlgError (the Newton
+    loop's "singular tangent"), not a perturbed-pivot answer."""
+    model, u, r, resp = slipped_state(materials, "free")
+    free = model.free
+    linear = ls.Sparse(model, False, "pardiso")
+    with pytest.raises(np.linalg.LinAlgError):
+        linear(model.points, 0.0 * resp.tangent, r, u[free], 1.0)
+
+
+def test_sparse_backend_is_checked():
+    with pytest.raises(ValueError, match="backend must be one of"):
+        ls.Sparse(None, False, "umfpack")
+
+
+def test_without_pypardiso_the_sparse_strategies_use_superlu(monkeypatch, materials):
+    """The optional package's absent path (pip install without the extra [pardiso]): an import that
+    fails gives SuperLU, and the answer is the same."""
+    import builtins
+
+    real_import = builtins.__import__
+
+    def no_pardiso(name, *args, **kwargs):
+        if name.split(".")[0] == "pypardiso":
+            raise ImportError("No module named 'pypardiso'")
+        return real_import(name, *args, **kwargs)
+
+    model, u, r, resp = slipped_state(materials, "coulomb")
+    monkeypatch.setattr(builtins, "__import__", no_pardiso)
+    assert not ls.pardiso_available()
+    linear = ls.Sparse(model, False, "auto")
+    assert linear.backend == "superlu"
+    Kt = (model.stiffness + interface_tangent(model.points, resp.tangent)).tocsr()[model.free][:, model.free]
+    ref = spla.spsolve(Kt.tocsc(), r)
+    np.testing.assert_allclose(linear(model.points, resp.tangent, r, u[model.free], 1.0), ref, rtol=0,
+                               atol=1e-9 * np.max(np.abs(ref)))

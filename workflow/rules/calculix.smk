@@ -19,6 +19,7 @@ rule fe_calculix:
     input:
         runs=fe_beam_dirs(CALCULIX_RUNS),
         code=FE_REPORT_SOURCES + FE_SOURCES + library_sources("paper/calculix.py", "paper/calculix_deck.py"),
+        kernels=KERNELS_WARM,
     output:
         md="paper_figures/calculix.md",
         csv="paper_figures/calculix.csv",
@@ -43,6 +44,7 @@ rule fe_export_figure:
     """The figure of docs/fe-export.md: law vs exported rows and the error per row interval."""
     input:
         code=PHYSICS_SOURCES + library_sources("interface/export.py") + library_sources("paper/export_figure.py"),
+        kernels=KERNELS_WARM,  # the normal-law tables: the kernels from the cache
     output:
         png="paper_figures/fe_export.png",
         csv="paper_figures/fe_export.csv",

@@ -12,6 +12,42 @@ REPO = Path(workflow.basedir)
 # Shell rules call `python`: the interpreter running Snakemake comes first on PATH (a parameter
 # holding sys.executable would bake the venv's absolute path into every job's record).
 os.environ["PATH"] = f"{Path(sys.executable).parent}{os.pathsep}{os.environ.get('PATH', '')}"
+
+
+def _one_reevaluation_timer():
+    """Snakemake 9 (job_scheduler._schedule_reevalutation, under the default
+    --max-jobs-per-timespan 100/1s): every pass of the scheduling loop that leaves ready jobs
+    waiting starts one more 1-s timer that wakes the loop again, and every finished job adds a
+    pass, so the timers multiply while jobs queue for the cores: over 15 000 timer threads in one
+    reproduction, whose passes (input sizes, job selection: with the default ILP scheduler a pulp
+    model each) made the Snakemake process's own CPU 291 s of the run's ~890 s (benchmarks/workflow_profile.py, 2 cores; cf. snakemake/snakemake#3804).
+    One pending timer wakes the loop just as well: a timer is started only when none is pending
+    (a daemon thread: an exit never waits for it). Left alone where the installed Snakemake has
+    no such method (another version, its own scheduler)."""
+    import threading
+
+    try:
+        from snakemake.scheduling.job_scheduler import JobScheduler
+    except ImportError:
+        return
+    original = getattr(JobScheduler, "_schedule_reevalutation", None)
+    if original is None or getattr(original, "_roughcontact_single", False):
+        return
+
+    def schedule_reevaluation(self, delay):
+        pending = getattr(self, "_roughcontact_timer", None)
+        if pending is not None and pending.is_alive():
+            return
+        timer = threading.Timer(delay, lambda: self._open_jobs.release())
+        timer.daemon = True
+        self._roughcontact_timer = timer
+        timer.start()
+
+    schedule_reevaluation._roughcontact_single = True
+    JobScheduler._schedule_reevalutation = schedule_reevaluation
+
+
+_one_reevaluation_timer()
 SCENES = config["scenes"]
 REFERENCE_DPS = int(config["reference_dps"])
 
@@ -244,7 +280,8 @@ def fe_targets():
                                                  "table5.md", "table5.csv", "fe_punch_readings.md",
                                                  "fe_punch_readings.csv", "fig14.png", "fig15.png",
                                                  "fig18.png", "fig18.csv", "fig19.png", "fig19.csv",
-                                                 "fe_benchmark.md", "fe_export.png", "calculix.md")]
+                                                 "fe_benchmark.md", "fe_export.png", "calculix.md",
+                                                 "ccx_friction.md")]
 
 
 FE_TITLES = {
@@ -252,6 +289,7 @@ FE_TITLES = {
     "fe_beam_study": "Example 9.1: tangential restraint, E* and mesh convergence",
     "table5": "Table 5 and section 9.2: the punch with orthotropic hardening friction (example 9.2)",
     "calculix": "The exported pressure-overclosure table in CalculiX (optional tool ccx; issue 14)",
+    "ccx_friction": "The full law, friction included, inside CalculiX against the engine (optional: a ccx built with the law; issue 30)",
     "fe_beam_anchor": "Example 9.1 against a 2D plane-stress solution by a separate code (engine-free anchor)",
     "fe_punch_anchor": "Example 9.2 against its equilibrium, friction limit, dissipation and bound (engine-free anchor)",
 }
@@ -265,7 +303,7 @@ def drawing_targets():
 
 def fe_checks():
     return [f"results/verify/{name}.checks.csv" for name in ("table4", "fe_beam_study", "table5", "calculix",
-                                                             "fe_beam_anchor", "fe_punch_anchor")]
+                                                             "ccx_friction", "fe_beam_anchor", "fe_punch_anchor")]
 
 
 FE_PUNCH = config["fe"]["punch"]
@@ -300,6 +338,8 @@ rule code_fingerprint:
         digest=lambda w: _code_digest(REPO / FINGERPRINTED[w.fingerprint]),
         earlier=lambda w: w.fingerprint[: -len("0123456789abcdef.sha256")] + "????????????????.sha256",
     localrule: True
+    # before everything (milliseconds each): numba_warmup, which most jobs wait for, needs them
+    priority: 100
     shell:
         "find {FINGERPRINTS} -maxdepth 1 -name '{params.earlier}' ! -name '{wildcards.fingerprint}' -delete"
         " && echo {params.digest} > {output} && echo '{params.source}: {params.digest}' > {log}"

@@ -18,6 +18,8 @@ rule numba_warmup:
     benchmark:
         "results/benchmarks/rules/numba_warmup.tsv"
     threads: 2  # its two parts in two processes (roughcontact.warmup); scaled down to --cores 1
+    # first of all: most jobs wait for it, and a job that starts before it compiles on its own
+    priority: 100
     shell:
         "python -m roughcontact.warmup --jobs {threads} > {log} 2>&1"
 

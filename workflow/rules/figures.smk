@@ -75,6 +75,7 @@ rule curves_friction:
     mapping: the slip rule (Fig. 9), a slip-hardening curve, Fig. 18's cases (a)-(c)."""
     input:
         lib=PHYSICS_SOURCES,
+        kernels=KERNELS_WARM,  # Fig. 18's elasto-plastic normal-law table: the kernels from the cache
     output:
         "results/curves/{scene}.nc",
     log:

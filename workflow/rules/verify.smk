@@ -72,6 +72,7 @@ rule verification_report:
         speed="paper_figures/speed_vs_error.md",
         fe_speed="paper_figures/fe_benchmark.md",
         calculix="paper_figures/calculix.md",
+        ccx_friction="paper_figures/ccx_friction.md",
         expected="config/expected_verdicts.yaml",
         errata=errata_input,
         code=REPORT_SOURCES,

@@ -1,12 +1,12 @@
 """paper_figures/VERIFICATION.md, verification.csv and results/verify/summary.json."""
 
 import json
-import shutil
 from pathlib import Path
 
 import yaml
 
 from roughcontact import __version__, io
+from roughcontact.paper import ccx_friction as ccx_friction_scene
 from roughcontact.paper import gate_anchors, report, verify
 
 
@@ -47,15 +47,16 @@ def _bem_section(files):
     return _calculix_section(files[0])
 
 
-def run(checks_files, speed, fe_speed, calculix, expected, errata, scene_titles, reference_dps, out, log, bem=()):
+def run(checks_files, speed, fe_speed, calculix, expected, errata, scene_titles, reference_dps, out, log, bem=(),
+        ccx_friction=None):
     with io.log_to(log) as logger:
         checks = []
         for path in list(checks_files) + [f for f in bem if f.endswith(".csv")]:
             checks += verify.checks_from_csv(Path(path).read_text())
         expectations = yaml.safe_load(Path(expected).read_text())
         checks = verify.apply_expectations(checks, expectations)
-        # optional scenes (e.g. one needing CalculiX) count only where their tool is installed
-        tools = [t for t in verify.required_tools(expectations) if shutil.which(t)]
+        # optional scenes (CalculiX; the ccx built with the law) count only where their tool is installed
+        tools = ccx_friction_scene.installed_tools(expectations)
         coverage = verify.check_coverage(checks, expectations, tools)
         errata_list = report.parse_errata(Path(errata[0]).read_text()) if errata else []
         provenance = {
@@ -71,6 +72,8 @@ def run(checks_files, speed, fe_speed, calculix, expected, errata, scene_titles,
             checks, errata=errata_list, provenance=provenance, scene_titles=scene_titles,
             sections={"Speed against error": _speed_section(speed), "FE speed and size": _fe_section(fe_speed),
                       "CalculiX cross-check (optional scene calculix, tool ccx)": _calculix_section(calculix),
+                      "The full law inside CalculiX (optional scene ccx_friction, `make ccx-build`)":
+                          _calculix_section(ccx_friction) if ccx_friction else "",
                       "Where the model and its law hold: the BEM comparison (optional target bem)":
                           _bem_section([f for f in bem if f.endswith(".md")])},
             summary=summary))
@@ -82,4 +85,4 @@ if "snakemake" in globals():
     sm = snakemake  # noqa: F821
     run(list(sm.input.checks), sm.input.speed, sm.input.fe_speed, sm.input.calculix, sm.input.expected, list(sm.input.errata), sm.params.scene_titles,
         sm.params.reference_dps, {"md": sm.output.md, "csv": sm.output.csv, "summary": sm.output.summary},
-        sm.log[0], list(sm.params.bem))
+        sm.log[0], list(sm.params.bem), sm.input.ccx_friction)

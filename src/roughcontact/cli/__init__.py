@@ -26,6 +26,8 @@ A thin layer: parse and validate the arguments, call the library, print the resu
     roughcontact bem SCAN --E-star E (--pressure P [P ...] | --pressure-range LO HI [--n-pressures N])
                          [--periodic] [--stress-unit U] [--law-table FILE] [--quiet] [--json]
                          (and the reading options of moments)
+    roughcontact ccx build [--source DIR] [--jobs N] [--force] [--json]
+    roughcontact ccx run MODEL.inp --interface LAW.yaml [--keep DIR] [--increments N] [--json]
 
 The contact commands (elastic, elastoplastic) take --s, --h (length unit) or --pressure (the
 separation solved, load control); E* as --E-star or --E1 --nu1 [--E2 --nu2] (eq. 42); a second
@@ -285,7 +287,7 @@ def build_parser() -> argparse.ArgumentParser:
     )
     parser.add_argument("--version", action="version", version=f"{PROG} {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
-    from . import bem, contact, fe, measured, moments, plot
+    from . import bem, ccx, contact, fe, measured, moments, plot
 
     parents = [_moments_parent(), _output_parent()]
     contact.add_commands(sub, parents)
@@ -294,6 +296,7 @@ def build_parser() -> argparse.ArgumentParser:
     fe.add_commands(sub, parents)
     plot.add_command(sub, parents[1:])
     bem.add_command(sub, parents[1:])
+    ccx.add_command(sub, parents[1:])
     return parser
 
 

@@ -120,7 +120,9 @@ def _add_run(sub, parents) -> None:
     p.add_argument("--quiet", action="store_true", help="no progress lines on stderr")
     p.add_argument("--solver", choices=LINEAR_SOLVERS, default="auto",
                    help="the linear solves (roughcontact.fe.solver, docs/performance.md): auto (default), condensed, "
-                   "sparse, or either with its factor reused as a GMRES preconditioner (condensed-krylov, sparse-krylov)")
+                   "sparse, or either with its factor reused as a GMRES preconditioner (condensed-krylov, sparse-krylov); auto is "
+                   "condensed-krylov up to 3000 interface dofs, else sparse-krylov; the sparse factorisation is MKL PARDISO "
+                   "when the optional package pypardiso is installed (much faster on large models), else SuperLU")
     p.set_defaults(func=_run_deck, render=_render_deck)
 
 

@@ -62,6 +62,7 @@ from ..integrals.polar import PolarGeometry
 from ..integrals.production import polar_elastoplastic_integrals
 from ..integrals.reference_elastoplastic import reference_integrals
 from ..integrals.rules import elastoplastic_settings_for, nested_theta_rule
+from ..integrals.summit_table import build_table, build_tables, shared_scale
 from ..statistics.surface import SpectralMoments
 from ..validation import choice, instance, separations
 from .validity import VALIDITY_MODES, check_bandwidth, check_validity
@@ -72,6 +73,16 @@ __all__ = ["ElastoPlasticCurves", "elastoplastic_contact", "elastoplastic_contac
 
 HERTZ = ("exact", "paper")
 METHODS = ("production", "reference")
+#: production routes: "tau" (the τ = r t kernel, per separation) and "table" (one summit table
+#: per material, integrals.summit_table; each separation a Gaussian convolution over it; the
+#: materials of one call built together by the shared build, summit_table.build_tables)
+ROUTES = ("tau", "table")
+_TABLES: dict = {}
+_TABLES_MAX = 256
+#: materials built together by the shared build (summit_table.build_tables) from this many on:
+#: measured on Table 1 ("plot", load ~13), one shared build costs ~3 per-material builds for 1
+#: material, ~4 for 5, ~8 for 50 (the y-panels of more materials refine more)
+SHARED_MIN = 4
 _PARTS = ("elastic", "elastoplastic", "plastic")
 
 
@@ -264,6 +275,53 @@ def _production(surface, l_values, material, hertz, accuracy, return_info=False)
     return (out[:, 0], info[:, 0]) if return_info else out[:, 0]
 
 
+def _table_many(surface, l_values, materials, hertz, accuracy):
+    """:func:`_production_many` by the summit table (integrals.summit_table): one table per
+    (surface, hertz, accuracy, material), cached and rebuilt over a wider range when the
+    separations leave it. The materials without a table are built together when there are
+    SHARED_MIN of them and their t_c1 are multiples of one another (eq. (65): every material
+    differing in Y, E*, H, c_h, ω_p/ω_c, K_v), from one set of material-free densities
+    (summit_table.build_tables, "the shared build"); a lone material by build_table, and so
+    is every material when the shared build cannot meet its tolerance (ArithmeticError)."""
+    nodes = _theta_geometry(surface, hertz, accuracy)[0]
+    sigma = math.sqrt(surface.m00 * surface.mu)
+    l_values = np.asarray(l_values, dtype=float)
+    lo, hi = float(l_values.min()), float(l_values.max())
+    out = np.empty((l_values.size, len(materials), 8))
+    tables = {}
+    missing = []
+    for m in dict.fromkeys(materials):
+        table = _TABLES.get((surface, hertz, accuracy, m))
+        if table is not None and table.covers(lo, hi):
+            tables[m] = table
+        else:
+            if table is not None:
+                lo, hi = min(lo, table.y_range[0] + 11.0), max(hi, table.y_range[1] - 11.0)
+            missing.append(m)
+    if missing:
+        tc1s = [_tc1(surface, hertz, accuracy, m) for m in missing]
+        built = None
+        if len(missing) >= SHARED_MIN and shared_scale(tc1s) is not None:
+            try:
+                built = build_tables(nodes, tc1s, sigma, [_material_constants(m) for m in missing], accuracy, lo, hi)
+            except ArithmeticError:  # a v-panel short of its tolerance: the per-material builds (same bound)
+                built = None
+        if built is None:
+            built = [build_table(nodes, t, sigma, _material_constants(m), accuracy, lo, hi)
+                     for m, t in zip(missing, tc1s)]
+        for m, table in zip(missing, built):
+            key = (surface, hertz, accuracy, m)
+            _TABLES.pop(key, None)
+            if len(_TABLES) >= _TABLES_MAX:
+                _TABLES.pop(next(iter(_TABLES)))
+            _TABLES[key] = tables[m] = table
+    for k, m in enumerate(materials):
+        out[:, k] = tables[m].columns(l_values)
+    out *= surface.summit_density
+    out[..., 6] = out[..., 6] + out[..., 7]
+    return out
+
+
 #: the column groups whose sum is each production column's total (s_interpolation's
 #: relative-error floor): area parts, load parts, K (with its jump part)
 _COLUMN_TOTALS = ((0, 1, 2),) * 3 + ((3, 4, 5),) * 3 + ((6,), (6,))
@@ -298,6 +356,7 @@ def elastoplastic_contact(
     validity: str = "refuse",
     interpolate_s: bool = True,
     s_rtol: float | None = None,
+    route: str = "tau",
 ) -> ElastoPlasticCurves:
     """Elasto-plastic contact per unit nominal area at separations ``s`` = h/√m00 (23).
 
@@ -317,17 +376,21 @@ def elastoplastic_contact(
               grid with fewer nodes than points verifies). Production only.
     s_rtol    tolerance of that check; default a tenth of the preset's stated bound
               (S_RTOL), so that the curve stays within the preset's bound.
+    route     production route (ROUTES): "tau" (per separation) or "table" (one summit table
+              per material, cached; every separation a quadrature over it, no s-interpolation;
+              SHARED_MIN or more new materials of a call are built together by one shared
+              build, summit_table.build_tables: what a sweep over ψ at fixed moments needs).
 
     Returns :class:`ElastoPlasticCurves`: A/A0, W/A0 (unit of E*), K/A0 = −d(W/A0)/dh (unit of
     E* per L) and the elastic / elasto-plastic / plastic parts of area and load.
     """
     return elastoplastic_contact_many(surface, s, [material], hertz=hertz, accuracy=accuracy, method=method,
-                                      validity=validity, interpolate_s=interpolate_s, s_rtol=s_rtol)[0]
+                                      validity=validity, interpolate_s=interpolate_s, s_rtol=s_rtol, route=route)[0]
 
 
 def elastoplastic_contact_many(surface: SpectralMoments, s, materials, *, hertz: str = "exact", accuracy="table",
                                method: str = "production", validity: str = "refuse", interpolate_s: bool = True,
-                               s_rtol: float | None = None) -> list[ElastoPlasticCurves]:
+                               s_rtol: float | None = None, route: str = "tau") -> list[ElastoPlasticCurves]:
     """:func:`elastoplastic_contact` for several materials on one surface (same arguments;
     ``materials`` a sequence of AsperityMaterial): one :class:`ElastoPlasticCurves` each, the
     same numbers as one call per material. Faster: the summit measure's hyperbola integrals
@@ -342,7 +405,12 @@ def elastoplastic_contact_many(surface: SpectralMoments, s, materials, *, hertz:
     choice("validity", validity, VALIDITY_MODES)
     check_bandwidth(surface.mu, method)
     how = [None] * len(materials)
-    if method == "production":
+    choice("route", route, ROUTES)
+    if method == "production" and route == "table":
+        elastoplastic_settings_for(accuracy)  # validates the preset name
+        cols = _table_many(surface, surface.l_from_s(s_arr), materials, hertz, accuracy)
+        how = [SInterpolation("direct", s_arr.size, 0, math.nan, _s_rtol(accuracy, s_rtol))] * len(materials)
+    elif method == "production":
         elastoplastic_settings_for(accuracy)  # validates the preset name
         rtol = _s_rtol(accuracy, s_rtol)
 

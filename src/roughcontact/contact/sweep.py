@@ -82,6 +82,12 @@ class SweepSpec:
              direct values; worth it for dense axes over narrow ranges.
     units    {"length": ..., "stress": ...} of the inputs, UDUNITS strings (stored as the variables' units;
              None: the dimensional variables get no units attribute).
+    route    production route of contact.elastoplastic (ROUTES): "tau" (per separation, default)
+             or "table" (one summit table per (surface, material), integrals.summit_table;
+             every separation a quadrature over it, no s-interpolation needed; the materials
+             of one surface — every ψ, Y, E*, … of the grid at fixed moments — come from one
+             shared build, summit_table.build_tables, so a sweep costs about one build per
+             surface: benchmarks/ep_cost.py).
     """
 
     axes: Mapping[str, Sequence[float]]
@@ -95,6 +101,7 @@ class SweepSpec:
     interpolate_s: bool = True
     interpolate_axes: Sequence[str] = ()
     units: Mapping[str, str] | None = None
+    route: str = "tau"
 
     def __post_init__(self) -> None:
         axes = {str(k): np.atleast_1d(np.asarray(v, dtype=float)) for k, v in dict(self.axes).items()}
@@ -121,6 +128,7 @@ class SweepSpec:
         elif self.closure not in CLOSURES:
             raise ValueError(f"closure must be one of {', '.join(CLOSURES)}; got {describe(self.closure)}")
         choice("validity", self.validity, VALIDITY_MODES)
+        choice("route", self.route, ("tau", "table"))
         for name in self.interpolate_axes:
             choice("interpolate_axes", name, INTERPOLABLE)
         object.__setattr__(self, "interpolate_axes", tuple(self.interpolate_axes))
@@ -216,7 +224,7 @@ def _direct_block(spec: SweepSpec, counter: _Progress):
     for surface, members in by_surface.items():
         curves = elastoplastic_contact_many(surface, spec.s, [m for _, m in members], hertz=spec.hertz,
                                             accuracy=spec.accuracy, validity=spec.validity,
-                                            interpolate_s=spec.interpolate_s)
+                                            interpolate_s=spec.interpolate_s, route=spec.route)
         for (idx, _), ep in zip(members, curves):
             out[idx] = np.stack([getattr(ep, f) for f in ElastoPlasticCurves.FIELDS], axis=-1)
             records["s"].append(ep.interpolation.as_attrs())
@@ -334,6 +342,7 @@ def run_sweep(spec: SweepSpec, progress: Callable[[int, int], None] | None = Non
         closure=str(spec.closure),
         hertz=spec.hertz,
         accuracy=spec.accuracy,
+        route=spec.route,
         **{f"fixed_{k}": v for k, v in spec.fixed.items()},
         **_interpolation_attrs(records["s"]),
         **{k: v for axis in INTERPOLABLE if records[axis] for k, v in _axis_attrs(axis, records[axis]).items()},
@@ -435,5 +444,6 @@ def spec_from_config(cfg: Mapping, units: Mapping[str, str] | None = None) -> Sw
         with_elastic=bool(cfg.get("with_elastic", True)),
         interpolate_s=bool(cfg.get("interpolate_s", True)),
         interpolate_axes=tuple(cfg.get("interpolate_axes", ())),
+        route=cfg.get("route", "tau"),
         **({"units": dict(units)} if units else {}),
     )

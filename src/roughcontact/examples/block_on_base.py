@@ -7,18 +7,22 @@ Geometry [mm] (half model, y ≥ 0; the plane y = 0 a symmetry plane of the bodi
 the base x ∈ [−20, 20], y ∈ [0, 20], z ∈ [−10, 0], steel E = 210000 N/mm², ν = 0.3, held at
 its bottom; the block x ∈ [−10, 10], y ∈ [0, 10], z ∈ [0, 10], aluminium E = 70000 N/mm²,
 ν = 0.33, its bottom on the base's top (node-matching grids), held in x at its top centre node
-(the frictionless interface holds nothing tangentially). The load: a pressure on the half of the
-block's top with x ≥ 0 (node set LOADED), raised in ``increments``. C3D20 elements, ``refine``
+(the frictionless interface holds nothing tangentially; with ``friction`` the interface holds it
+and the top is free). The load: a pressure on the block's top with x ≥ −5 mm (node set LOADED),
+raised in ``increments``; with ``shear`` a second step adds a force along x spread evenly over the
+LOADED nodes (``shear`` × the loaded area, *CLOAD), the pressure held. C3D20 elements, ``refine``
 × (2, 1, 2) in the block and (4, 2, 2) in the base along x, y, z.
 
 The interface: the Table 1 surface (m00 = 0.0625 µm² …), elastic, E* of the two materials
 (eq. (42), from the deck's *ELASTIC), seated at ``seating_pressure`` (0.1 N/mm²: from
-1e-3 N/mm² ccx needs five times the increments), frictionless.
+1e-3 N/mm² ccx needs five times the increments), frictionless or with ``friction`` (a
+:mod:`roughcontact.fe.laws` friction, e.g. the orthotropic hardening law of section 8.1).
+Node sets CONTACTSLAVE / CONTACTMASTER: the block's bottom and the base's top nodes under it.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -47,6 +51,8 @@ class BlockOnBase:
     pressure: float = 10.0
     increments: int = 4
     seating_pressure: float = 0.1
+    friction: object = field(default_factory=NoFriction)
+    shear: float = 0.0
 
     def __post_init__(self):
         for name in ("refine", "increments"):
@@ -55,11 +61,15 @@ class BlockOnBase:
                 raise ValueError(f"{name} must be a positive integer, got {describe(v)}")
         positive("pressure", self.pressure)
         positive("seating_pressure", self.seating_pressure)
+        if not (self.shear >= 0.0 and np.isfinite(self.shear)):
+            raise ValueError(f"shear must be >= 0 and finite, got {describe(self.shear)}")
+        if self.shear > 0.0 and isinstance(self.friction, NoFriction):
+            raise ValueError("a shear step needs friction (a frictionless interface holds nothing tangentially)")
 
     def law_file(self) -> LawFile:
         """The interface law (interaction ROUGH): E* from the deck's materials (42)."""
         law = InteractionLaw(SpectralMoments(**MOMENTS), "um", (1.0, 0.0, 0.0), "elastic", self.seating_pressure,
-                             NoFriction())
+                             self.friction)
         return LawFile("mm", {"ROUGH": law})
 
 
@@ -84,6 +94,17 @@ def block_on_base_deck(spec: BlockOnBase = BlockOnBase(), table: str | None = No
     top_elements = block.face_elements["ZMAX"]
     loaded = top_elements[corners[top_elements - block.element_ids[0]][:, :, 0].min(axis=1) >= LOADED_FROM - 1e-9]
     behaviour = table if table is not None else "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n1.0e6, 0."
+    loaded_nodes = top[top_x >= LOADED_FROM - 1e-9]
+    under = base.face_nodes["ZMAX"]
+    ux = base.coords[under - base.node_ids[0]]
+    under = under[(np.abs(ux[:, 0]) <= 10.0 + 1e-9) & (ux[:, 1] <= 10.0 + 1e-9)]
+    holding = isinstance(spec.friction, NoFriction)
+    shear_step = []
+    if spec.shear > 0.0:
+        force = spec.shear * (10.0 - LOADED_FROM) * 10.0 / len(loaded_nodes)  # N per node, the half model
+        shear_step = ["*STEP, INC=1000", "*STATIC", f"{number(1.0 / spec.increments, digits)}, 1., 1e-6, 1.",
+                      "*CLOAD", *(f"{n}, 1, {number(force, digits)}" for n in loaded_nodes),
+                      "*NODE PRINT, NSET=LOADED", "U", "*END STEP"]
     lines = [
         "*HEADING", "aluminium block on a steel base, eccentric load (roughcontact.examples.block_on_base), mm N",
         f"** refinement {r}: C3D20; contact: the block's bottom (slave) on the base's top (master)",
@@ -91,7 +112,8 @@ def block_on_base_deck(spec: BlockOnBase = BlockOnBase(), table: str | None = No
         *element_lines(base, "BASE"), *element_lines(block, "BLOCK"),
         *id_lines("*NSET, NSET=BOTTOM", base.face_nodes["ZMIN"]),
         *id_lines("*NSET, NSET=SYMMETRY", np.concatenate([base.face_nodes["YMIN"], block.face_nodes["YMIN"]])),
-        *id_lines("*NSET, NSET=LOADED", top[top_x >= LOADED_FROM - 1e-9]), *id_lines("*NSET, NSET=HOLD", [centre]),
+        *id_lines("*NSET, NSET=LOADED", loaded_nodes), *id_lines("*NSET, NSET=HOLD", [centre]),
+        *id_lines("*NSET, NSET=CONTACTSLAVE", block.face_nodes["ZMIN"]), *id_lines("*NSET, NSET=CONTACTMASTER", under),
         *id_lines("*ELSET, ELSET=LOADEDTOP", loaded),
         "*SURFACE, NAME=BLOCKBOTTOM", *(f"{e}, S1" for e in block.face_elements["ZMIN"]),
         "*SURFACE, NAME=BASETOP", *(f"{e}, S2" for e in base.face_elements["ZMAX"]),
@@ -101,8 +123,8 @@ def block_on_base_deck(spec: BlockOnBase = BlockOnBase(), table: str | None = No
         "** in roughcontact the law ROUGH of LAW.yaml replaces this interaction's *SURFACE BEHAVIOR",
         "*SURFACE INTERACTION, NAME=ROUGH", *behaviour.strip("\n").splitlines(),
         "*CONTACT PAIR, INTERACTION=ROUGH, TYPE=NODE TO SURFACE", "BLOCKBOTTOM, BASETOP",
-        "*BOUNDARY", "BOTTOM, 1, 3", "SYMMETRY, 2, 2", "HOLD, 1, 1",
+        "*BOUNDARY", "BOTTOM, 1, 3", "SYMMETRY, 2, 2", *(["HOLD, 1, 1"] if holding else []),
         "*STEP, INC=1000", "*STATIC", f"{number(1.0 / spec.increments, digits)}, 1., 1e-6, 1.",
         "*DLOAD", f"LOADEDTOP, P2, {number(spec.pressure, digits)}",
-        "*NODE PRINT, NSET=LOADED", "U", "*END STEP"]
+        "*NODE PRINT, NSET=LOADED", "U", "*END STEP", *shear_step]
     return "\n".join(lines) + "\n"

@@ -67,7 +67,8 @@ _UNSUPPORTED_ELEMENTS = {
 #: output requests: ignored with a note (with their data lines)
 IGNORED = ("NODE PRINT", "EL PRINT", "NODE FILE", "EL FILE", "CONTACT PRINT", "CONTACT FILE", "NODE OUTPUT",
            "ELEMENT OUTPUT", "CONTACT OUTPUT", "OUTPUT", "SECTION PRINT", "ENERGY PRINT", "FACE PRINT", "MONITOR")
-_SYMMETRY = {"XSYMM": (1, 1), "YSYMM": (2, 2), "ZSYMM": (3, 3), "PINNED": (1, 3), "ENCASTRE": (1, 3)}
+#: the Abaqus boundary types a *BOUNDARY line may name, as (first dof, last dof) of a solid
+BOUNDARY_TYPES = {"XSYMM": (1, 1), "YSYMM": (2, 2), "ZSYMM": (3, 3), "PINNED": (1, 3), "ENCASTRE": (1, 3)}
 MAX_INCREMENTS = 100_000
 #: the largest id (node, element) the engine indexes: its id arrays are 64-bit integers
 MAX_ID = int(np.iinfo(np.int64).max)
@@ -420,8 +421,8 @@ class _Reader:
         target = self.state["boundary"]
         for line in kw.data:
             nodes = self._node_refs(line.fields[0], line.where)
-            if len(line.fields) == 2 and line.fields[1].upper() in _SYMMETRY:
-                first, last = _SYMMETRY[line.fields[1].upper()]
+            if len(line.fields) == 2 and line.fields[1].upper() in BOUNDARY_TYPES:
+                first, last = BOUNDARY_TYPES[line.fields[1].upper()]
                 value = 0.0
             elif 2 <= len(line.fields) <= 4:
                 first = _int(line.fields[1], line.where, "the first dof")

@@ -29,7 +29,7 @@ from .interface_points import InterfacePoints, interface_points
 from .laws import LawError, LawFile, mindlin_poisson
 from .mesh import Mesh
 
-__all__ = ["InterfaceLaws", "DeckProblem", "deck_problem", "pressure_forces"]
+__all__ = ["InterfaceLaws", "DeckProblem", "deck_problem", "pair_modulus", "pressure_forces"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -118,10 +118,10 @@ def surface_material(deck, surface: str):
     return deck.materials[names.pop()] if len(names) == 1 and None not in names else None
 
 
-def _body_modulus(dm: DeckMesh, surface: str, where: str):
-    m = surface_material(dm.deck, surface)
+def _body_modulus(deck, surface: str, where: str):
+    m = surface_material(deck, surface)
     if m is None:
-        mats = sorted({str(dm.deck.element_material.get(eid)) for eid, _ in dm.deck.surfaces[surface]})
+        mats = sorted({str(deck.element_material.get(eid)) for eid, _ in deck.surfaces[surface]})
         raise DeckError(where, f"surface {surface} lies on several materials ({', '.join(mats)}): give E_star "
                                "in the law file")
     return m.E, m.nu
@@ -134,9 +134,22 @@ def _pair_poisson(deck, pair):
     return None if a is None or b is None else mindlin_poisson(a.E, a.nu, b.E, b.nu)
 
 
-def _interactions(dm: DeckMesh, laws: LawFile):
+def pair_modulus(deck, laws: LawFile, pair) -> tuple[float, float | None]:
+    """(E*, ν) of a contact pair: E* from its interaction's law or, if it gives none, eq. (42) of
+    the two bodies' *ELASTIC; ν for Mindlin's ratio (None where a surface lies on several
+    materials)."""
     from ..asperity import effective_modulus
 
+    law = laws.interactions[pair.interaction]
+    if law.E_star is not None:
+        E_star = law.E_star
+    else:
+        E_star = effective_modulus(*_body_modulus(deck, pair.slave, pair.where),
+                                   *_body_modulus(deck, pair.master, pair.where))  # eq. (42)
+    return E_star, _pair_poisson(deck, pair)
+
+
+def _interactions(dm: DeckMesh, laws: LawFile):
     deck = dm.deck
     missing = sorted(set(deck.interactions) - set(laws.interactions))
     used = {p.interaction for p in deck.contact_pairs}
@@ -162,12 +175,7 @@ def _interactions(dm: DeckMesh, laws: LawFile):
                            f"{describe(list(law.lay_direction))} is normal to a face of the contact pair "
                            f"{pair.slave}, {pair.master} ({pair.where}): give a direction along the faces "
                            "(the lay, the moments' x axis)") from None
-        if law.E_star is not None:
-            E_star = law.E_star
-        else:
-            E_star = effective_modulus(*_body_modulus(dm, pair.slave, pair.where),
-                                       *_body_modulus(dm, pair.master, pair.where))  # eq. (42)
-        nu = _pair_poisson(deck, pair)  # for kt_over_kn: mindlin
+        E_star, nu = pair_modulus(deck, laws, pair)  # nu: for kt_over_kn: mindlin
         key = (pair.interaction, E_star, nu)
         if key not in E:
             E[key] = law.material(laws.length_unit, E_star, nu)

@@ -17,25 +17,33 @@ quality, paid for in iterations.
 
 Accuracy (the Newton answer must not change): the solve is accepted when
 
-    ‖b − A_k x‖₂ ≤ KRYLOV_RTOL · ‖b‖₂,   KRYLOV_RTOL = 1e-12,
+    ‖b − A_k x‖₂ ≤ max(KRYLOV_RTOL, ρ_f) · ‖b‖₂,   KRYLOV_RTOL = 1e-12,
 
-checked on the explicitly recomputed residual (not the Arnoldi estimate). An inexact Newton step
-with forcing term η leaves a residual η‖r‖ + O(‖du‖²) (Dembo, Eisenstat & Steihaug, SIAM J.
-Numer. Anal. 19, 1982); with η = 1e-12, far below Newton's force tolerance 1e-9 relative, the
-iterations and the converged state are those of the direct solve to within the Newton tolerances
-(tests/fe/test_linear_solvers.py), and du itself is within cond(A_k)·1e-12 of the direct
-solve's (a backward-stable direct solve is within cond(A_k)·ε). Otherwise — GMRES above
-MAX_KRYLOV iterations, a breakdown or a non-finite vector — the current tangent is factored at
-once and solved directly (the answer of the direct strategy); a solve that took more than REFACTOR_AFTER iterations marks the kept factor
-stale, so the next solve refactors. The cost is then a factorisation per change of the active
-set or of the law's stiffness large enough to matter, plus one multiply by A_k and two
-triangular solves per GMRES iteration.
+checked on the explicitly recomputed residual (not the Arnoldi estimate; a drift between the
+two restarts GMRES on the recomputed residual, :func:`gmres_right`); ρ_f is the relative
+residual the direct solve reached right after the last factorisation (1e-11 on the 27 k-dof
+plate on a base: demanding more of GMRES than of the direct solve only made it give up). An
+inexact Newton step with forcing term η leaves a residual η‖r‖ + O(‖du‖²) (Dembo, Eisenstat &
+Steihaug, SIAM J. Numer. Anal. 19, 1982); with η ≤ max(1e-12, ρ_f), far below Newton's force
+tolerance 1e-9 relative, the iterations and the converged state are those of the direct solve
+to within the Newton tolerances (tests/fe/test_linear_solvers.py). Otherwise — GMRES beyond its
+iteration budget, a breakdown or a non-finite vector — the current tangent is factored at once
+and solved directly (the answer of the direct strategy); a solve that took more than half the
+budget marks the kept factor stale, so the next solve refactors. The budget weighs a timed
+factorisation against a timed GMRES iteration (:class:`ReusedFactor`). The cost is then a
+factorisation per change of the active set or of the law's stiffness large enough to matter,
+plus one multiply by A_k and two triangular solves per GMRES iteration.
+
+The sparse factorisation (:class:`Sparse`) is Intel MKL PARDISO through the optional package
+pypardiso when it is installed, else scipy's SuperLU in a nested-dissection order.
 """
 
 from __future__ import annotations
 
 import math
+import time
 import warnings
+import weakref
 from dataclasses import dataclass
 from typing import Callable
 
@@ -47,64 +55,97 @@ import scipy.sparse.linalg as spla
 from . import ordering
 from .interface_points import InterfacePoints, interface_tangent
 
-__all__ = ["KRYLOV_RTOL", "REFACTOR_AFTER", "MAX_KRYLOV", "KrylovStats", "ReusedFactor", "gmres_right", "Sparse",
+__all__ = ["KRYLOV_RTOL", "REFACTOR_AFTER", "MAX_KRYLOV", "MAX_KRYLOV_CAP", "RESTARTS", "DIRECT_RESIDUAL",
+           "KrylovStats", "ReusedFactor", "gmres_right", "Sparse", "SPARSE_BACKENDS", "pardiso_available",
            "Condensed"]
 
 #: accepted relative true residual ‖b − A x‖/‖b‖ of a Krylov solve (module docstring)
 KRYLOV_RTOL = 1e-12
-#: a solve that needed more GMRES iterations than this refactors at the next solve
+#: a solve that needed more GMRES iterations than this refactors at the next solve (at least:
+#: the adaptive budget may allow more, ReusedFactor)
 REFACTOR_AFTER = 12
-#: GMRES iterations before giving up: the current tangent is factored and solved directly
+#: GMRES iterations before giving up, at least (the adaptive budget may allow more): the current
+#: tangent is then factored and solved directly
 MAX_KRYLOV = 40
+#: GMRES iterations of one solve, at most (the Krylov basis: 2 · MAX_KRYLOV_CAP vectors of the
+#: system's size, 0.97 GB at 200 k unknowns)
+MAX_KRYLOV_CAP = 300
+#: a direct sparse solve with ‖r − K_t du‖ above this fraction of ‖r‖ is a singular tangent
+#: (PARDISO perturbs tiny pivots rather than failing; SuperLU raises on a zero pivot)
+DIRECT_RESIDUAL = 1e-6
+#: restarts of GMRES on the recomputed residual when round-off kept it from the target (gmres_right)
+RESTARTS = 2
 
 
 def gmres_right(matvec: Callable, precondition: Callable, b: np.ndarray, rtol: float,
                 max_iterations: int) -> tuple[np.ndarray | None, int]:
-    """Right-preconditioned GMRES from x₀ = 0 without restarts (Saad 2003, alg. 9.5; modified
-    Gram–Schmidt, applied twice; Givens rotations): (x, iterations) with ‖b − A x‖₂ ≤ rtol ‖b‖₂
-    on the recomputed residual, or (None, iterations) when that is not reached within
-    ``max_iterations`` or the vectors turn non-finite. ``matvec(v)`` = A v, ``precondition(v)``
-    = P⁻¹ v."""
+    """Right-preconditioned GMRES from x₀ = 0 (Saad 2003, alg. 9.5; classical Gram–Schmidt
+    applied twice, "twice is enough": Giraud et al., Numer. Math. 101, 2005; Givens rotations):
+    (x, iterations) with ‖b − A x‖₂ ≤ rtol ‖b‖₂ on the recomputed residual, or (None,
+    iterations) when that is not reached within ``max_iterations`` in all or the vectors turn non-finite. ``matvec(v)`` = A v,
+    ``precondition(v)`` = P⁻¹ v. When the Arnoldi estimate meets the target but the recomputed
+    residual does not (round-off in the long recurrence), GMRES restarts on the recomputed
+    residual with the iterations left, at most RESTARTS times: iterative refinement
+    (Higham, *Accuracy and Stability of Numerical Algorithms*, 2nd ed. 2002, ch. 12)."""
     beta = float(np.linalg.norm(b))
     if beta == 0.0:
         return np.zeros_like(b), 0
     target = rtol * beta
+    x, r, used = np.zeros_like(b), b, 0
+    for _ in range(RESTARTS + 1):
+        dx, its, met = _gmres_cycle(matvec, precondition, r, target, max_iterations - used)
+        used += its
+        if dx is None:
+            return None, used
+        x = x + dx
+        r = b - matvec(x)
+        if not np.all(np.isfinite(x)):
+            return None, used
+        if np.linalg.norm(r) <= target:
+            return x, used
+        if not met or used >= max_iterations:  # the iterations ran out
+            return None, used
+    return None, used
+
+
+def _gmres_cycle(matvec, precondition, b, target, max_iterations):
+    """One GMRES cycle from x₀ = 0 on b (:func:`gmres_right`): (x, iterations, the Arnoldi
+    estimate met ``target``), x None on a breakdown or non-finite vectors."""
+    if max_iterations < 1:
+        return None, 0, False
+    beta = float(np.linalg.norm(b))
     V = np.empty((max_iterations + 1, b.size))
     H = np.zeros((max_iterations + 1, max_iterations))
     cs, sn = np.zeros(max_iterations), np.zeros(max_iterations)
     g = np.zeros(max_iterations + 1)
     V[0], g[0] = b / beta, beta
-    Z = []
+    Z = np.empty((max_iterations, b.size))
     for j in range(max_iterations):
-        z = precondition(V[j])
-        Z.append(z)
-        w = matvec(z)
-        for _ in range(2):  # reorthogonalised modified Gram–Schmidt
-            for i in range(j + 1):
-                h = float(V[i] @ w)
-                H[i, j] += h
-                w -= h * V[i]
+        Z[j] = precondition(V[j])
+        w = matvec(Z[j])
+        for _ in range(2):  # classical Gram–Schmidt, twice (CGS2: as orthogonal as MGS with re-orthogonalisation)
+            h = V[:j + 1] @ w
+            H[:j + 1, j] += h
+            w -= h @ V[:j + 1]
         w_norm = float(np.linalg.norm(w))
         H[j + 1, j] = w_norm
         if not (math.isfinite(w_norm) and np.all(np.isfinite(H[:j + 1, j]))):
-            return None, j + 1
+            return None, j + 1, False
         for i in range(j):  # the earlier rotations on the new column
             H[i, j], H[i + 1, j] = cs[i] * H[i, j] + sn[i] * H[i + 1, j], -sn[i] * H[i, j] + cs[i] * H[i + 1, j]
         rho = math.hypot(H[j, j], H[j + 1, j])
         if rho == 0.0:
-            return None, j + 1
+            return None, j + 1, False
         cs[j], sn[j] = H[j, j] / rho, H[j + 1, j] / rho
         H[j, j], H[j + 1, j] = rho, 0.0
         g[j + 1], g[j] = -sn[j] * g[j], cs[j] * g[j]
+        met = abs(g[j + 1]) <= 0.5 * target
         # w_norm = 0: the Krylov space holds the solution (a "lucky" breakdown)
-        if abs(g[j + 1]) <= 0.5 * target or j + 1 == max_iterations or w_norm == 0.0:
+        if met or j + 1 == max_iterations or w_norm == 0.0:
             y = la.solve_triangular(H[:j + 1, :j + 1], g[:j + 1])
-            x = np.asarray(Z).T @ y
-            if np.all(np.isfinite(x)) and np.linalg.norm(b - matvec(x)) <= target:
-                return x, j + 1
-            return None, j + 1  # the estimate met, not the recomputed residual (round-off): give up
+            return y @ Z[:j + 1], j + 1, met or w_norm == 0.0
         V[j + 1] = w / w_norm
-    return None, max_iterations
+    return None, max_iterations, False
 
 
 @dataclass
@@ -121,20 +162,40 @@ class KrylovStats:
 
 class ReusedFactor:
     """x = A⁻¹ b for a sequence of slowly changing A (module docstring): GMRES preconditioned by
-    the kept factor while it converges within MAX_KRYLOV iterations, else a new factorisation."""
+    the kept factor while it converges within the iteration budget, else a new factorisation.
 
-    def __init__(self, rtol: float = KRYLOV_RTOL, refactor_after: int = REFACTOR_AFTER,
-                 max_iterations: int = MAX_KRYLOV):
-        self.rtol, self.refactor_after, self.max_iterations = rtol, refactor_after, max_iterations
+    The budget (``refactor_after``/``max_iterations`` None, the default) weighs a GMRES
+    iteration against a factorisation, both timed on this run: with t_f the wall time of the
+    last factorisation and t_i that of one GMRES iteration (a solve with the factor plus a
+    product with A, timed at the factorisation), GMRES may take up to t_f / t_i iterations
+    (clamped to MAX_KRYLOV ... MAX_KRYLOV_CAP) before it gives up — a solve never costs much
+    more than factoring would have — and a solve that needed more than half of them marks the
+    factor stale (the rule of the ski-rental problem: rent until the rent paid equals the
+    price, Karlin et al., Algorithmica 11, 1994). On a large model a factorisation costs
+    hundreds of iterations, so the factor of the first tangent serves many increments; on a
+    small one the budget falls to MAX_KRYLOV and REFACTOR_AFTER. Given integers, the budget is
+    fixed (deterministic; the tests).
+
+    Accuracy: a Krylov answer is accepted at ‖b − A x‖ ≤ max(rtol, ρ_f) ‖b‖, ρ_f the relative
+    residual the direct solve reached right after the last factorisation (its own round-off
+    level on these matrices, 1e-11 on the 27 k-dof plate on a base): never less accurate than
+    the direct strategy's answer."""
+
+    def __init__(self, rtol: float = KRYLOV_RTOL, refactor_after: int | None = None,
+                 max_iterations: int | None = None):
+        self.rtol, self.fixed_refactor, self.fixed_max = rtol, refactor_after, max_iterations
+        self.refactor_after = REFACTOR_AFTER if refactor_after is None else refactor_after
+        self.max_iterations = MAX_KRYLOV if max_iterations is None else max_iterations
         self.factor: Callable | None = None
         self.stale = False
+        self.floor = 0.0  # ρ_f
         self.stats = KrylovStats()
 
     def solve(self, matvec: Callable, b: np.ndarray, factorise: Callable[[], Callable]) -> np.ndarray:
         """``matvec(v)`` = A v of the current A; ``factorise()`` factors the current A and returns
         its solve (v ↦ A⁻¹ v); it may raise (a singular A) as the direct strategies do."""
         if self.factor is not None and not self.stale:
-            x, its = gmres_right(matvec, self.factor, b, self.rtol, self.max_iterations)
+            x, its = gmres_right(matvec, self.factor, b, max(self.rtol, self.floor), self.max_iterations)
             if x is not None:
                 self.stats.krylov_solves += 1
                 self.stats.krylov_iterations += its
@@ -142,11 +203,24 @@ class ReusedFactor:
                 return x
             self.stats.krylov_failures += 1
         self.factor = None  # free the old factor before the new one is made (peak memory)
+        t0 = time.perf_counter()
         self.factor = factorise()
+        t1 = time.perf_counter()
+        x = self.factor(b)
+        t2 = time.perf_counter()
+        r = b - matvec(x)
+        t3 = time.perf_counter()
+        norm_b = float(np.linalg.norm(b))
+        self.floor = float(np.linalg.norm(r)) / norm_b if norm_b > 0.0 and np.all(np.isfinite(r)) else 0.0
         self.stale = False
         self.stats.factorisations += 1
         self.stats.direct_solves += 1
-        return self.factor(b)
+        if self.fixed_max is None:
+            per_iteration = max((t2 - t1) + (t3 - t2), 1e-9)
+            self.max_iterations = int(min(max((t1 - t0) / per_iteration, MAX_KRYLOV), MAX_KRYLOV_CAP))
+        if self.fixed_refactor is None:
+            self.refactor_after = max(REFACTOR_AFTER, self.max_iterations // 2)
+        return x
 
 
 # ---------------------------------------------------------------------------------------------
@@ -183,16 +257,68 @@ def _ordered(model, K, dofs) -> np.ndarray:
     return ordering.dof_order(K, dofs, model.free // 3, model.coordinates)
 
 
-class Sparse:
-    """The full tangent, refactored every iteration (SuperLU in a nested-dissection order;
-    diagonal pivoting when the tangent is symmetric); with ``krylov`` its factor is kept and
-    reused as the preconditioner of GMRES (:mod:`.linear_solvers`)."""
+def pardiso_available() -> bool:
+    """Whether Intel MKL PARDISO can be used (the optional package pypardiso with its MKL)."""
+    try:
+        import pypardiso  # noqa: F401
 
-    def __init__(self, model, krylov: bool = False):
+        return pypardiso.PyPardisoSolver is not None
+    except (ImportError, OSError):  # not installed, or its MKL library not found
+        return False
+
+
+class _PardisoFactor:
+    """b ↦ A⁻¹ b by MKL PARDISO (pypardiso; Schenk & Gärtner, Future Gener. Comput. Syst. 20,
+    2004): METIS ordering, supernodal; Cholesky (mtype 2, the upper triangle) of a symmetric A
+    (a zero or negative pivot raises LinAlgError: singular or indefinite), LU with pivot
+    perturbation (mtype 11) of an unsymmetric one. The factor's memory is released with the
+    object."""
+
+    def __init__(self, A: sp.csc_matrix, symmetric: bool):
+        import pypardiso
+
+        self.solver = pypardiso.PyPardisoSolver(mtype=2 if symmetric else 11)
+        self.A = (sp.triu(A, format="csr") if symmetric else A.tocsr())
+        self.A.sort_indices()
+        weakref.finalize(self, _free_pardiso, self.solver)
+        try:
+            self.solver.factorize(self.A)
+        except pypardiso.pardiso_wrapper.PyPardisoError as exc:
+            raise np.linalg.LinAlgError(f"PARDISO: {exc}") from None
+
+    def __call__(self, b: np.ndarray) -> np.ndarray:
+        return self.solver.solve(self.A, b)
+
+
+def _free_pardiso(solver) -> None:
+    try:
+        solver.free_memory(everything=True)
+    except Exception:  # noqa: BLE001  (interpreter shutdown: MKL may be gone already)
+        pass
+
+
+#: the sparse factorisation of the "sparse" strategies: "pardiso" when pypardiso is importable
+#: (docs/performance.md, "Large contact interfaces (issue 31)"), else scipy's "superlu"
+SPARSE_BACKENDS = ("auto", "pardiso", "superlu")
+
+
+class Sparse:
+    """The full tangent, refactored every iteration — by PARDISO when available (its own METIS
+    ordering), else SuperLU in a nested-dissection order (diagonal pivoting when the tangent is
+    symmetric); with ``krylov`` its factor is kept and reused as the preconditioner of GMRES
+    (:mod:`.linear_solvers`). A direct solve whose residual exceeds DIRECT_RESIDUAL of ‖r‖
+    (PARDISO perturbs tiny pivots instead of failing) raises LinAlgError: a singular tangent."""
+
+    def __init__(self, model, krylov: bool = False, backend: str = "auto"):
+        if backend not in SPARSE_BACKENDS:
+            raise ValueError(f"backend must be one of {', '.join(SPARSE_BACKENDS)}, got {backend!r}")
+        if backend == "auto":
+            backend = "pardiso" if pardiso_available() else "superlu"
+        self.backend = backend
         self.reuse = ReusedFactor() if krylov else None
         free = model.free
         K = model.stiffness[free][:, free].tocsr()
-        self.order = _ordered(model, K, np.arange(free.size))
+        self.order = _ordered(model, K, np.arange(free.size)) if backend == "superlu" else np.arange(free.size)
         self.K = K[self.order][:, self.order].tocsc()
         self.B = model.points.B[:, free[self.order]].tocsr()
 
@@ -201,11 +327,21 @@ class Sparse:
         symmetric = _symmetric(D)
 
         def factorise():
+            if self.backend == "pardiso":
+                return _PardisoFactor(Kt, symmetric)
             return spla.splu(Kt, permc_spec="NATURAL", options=dict(SymmetricMode=symmetric),
                              **({"diag_pivot_thresh": 0.0} if symmetric else {})).solve
         du = np.empty(r.size)
         b = r[self.order]
-        du[self.order] = factorise()(b) if self.reuse is None else self.reuse.solve(Kt.__matmul__, b, factorise)
+        if self.reuse is None:
+            x = factorise()(b)
+            if self.backend == "pardiso" and not np.linalg.norm(b - Kt @ x) <= DIRECT_RESIDUAL * np.linalg.norm(b):
+                raise np.linalg.LinAlgError("PARDISO: the solve missed the residual (a singular tangent)")
+        else:
+            x = self.reuse.solve(Kt.__matmul__, b, factorise)
+            if self.backend == "pardiso" and self.reuse.floor > DIRECT_RESIDUAL:
+                raise np.linalg.LinAlgError("PARDISO: the solve missed the residual (a singular tangent)")
+        du[self.order] = x
         return du
 
 

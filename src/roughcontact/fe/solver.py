@@ -49,15 +49,22 @@ solves (:class:`.linear_solvers.Condensed`). ``"sparse"`` refactors the whole sp
 every iteration (SuperLU in the same nested-dissection order). ``"condensed-krylov"`` and
 ``"sparse-krylov"`` keep the factor (dense S + K_int, or sparse K_t) of an earlier iteration and
 reuse it as the right preconditioner of GMRES on the current tangent, refactoring only when GMRES
-needs more than REFACTOR_AFTER iterations or fails (:mod:`.linear_solvers`: the unsymmetric
-friction tangent is solved by GMRES as it is; the accepted residual ‖r − K_t du‖ ≤ 1e-12 ‖r‖,
-below Newton's force tolerance, so the iterations and the answer are the direct solve's).
-``"auto"`` (default) is "condensed-krylov" up to AUTO_CONDENSED_MAX = 3000 interface dofs and
-"sparse-krylov" beyond: condensing costs a dense S of 8 n_I² bytes and n_I³/3 per dense
+has cost about as much as a factorisation (the budget weighs the timed factorisation against a
+timed GMRES iteration: tens of iterations on small models, hundreds on large ones) or fails
+(:mod:`.linear_solvers`: the unsymmetric friction tangent is solved by GMRES as it is, and
+factored as it is — LU — when it is refactored; the accepted residual ‖r − K_t du‖ ≤
+max(1e-12, ρ_f) ‖r‖ with ρ_f the direct solve's own residual after the last factorisation,
+below Newton's force tolerance, so the iterations and the answer are the direct solve's). The
+sparse factorisation is Intel MKL PARDISO when the optional package pypardiso is installed
+(Cholesky of a symmetric tangent, LU of an unsymmetric one; METIS ordering; a factor of the
+209 k-dof plate on a base in 53 CPU s and 3.9 GB against more than 240 CPU s and 8.5 GB with
+SuperLU), else SuperLU. ``"auto"`` (default) is "condensed-krylov" up to AUTO_CONDENSED_MAX = 3000
+interface dofs and "sparse-krylov" beyond: condensing costs a dense S of 8 n_I² bytes and n_I³/3 per dense
 refactoring, the sparse strategy a factorisation of the whole sparse tangent per refactoring
-(docs/performance.md, "Large contact interfaces": a block on a base, 61.6 k dofs and 2166
-interface dofs, 35 s "condensed-krylov" against 164 s "sparse-krylov"; a plate on a base with
-full-face contact, 22.6 k dofs and 6534 interface dofs, 32 s "sparse-krylov" against 120-190 s).
+(docs/performance.md, "Large contact interfaces" and "Large contact interfaces (issue 31)": a
+block on a base, 61.6 k dofs and 2166 interface dofs, 35 s "condensed-krylov" against 164 s
+"sparse-krylov"; a plate on a base with full-face contact, 22.6 k dofs and 6534 interface
+dofs, 32 s "sparse-krylov" against 120-190 s).
 The Newton loop runs with ``blas_threads`` BLAS threads (1: on these dense systems a second
 thread costs more than it gains, and on a loaded machine far more). ``make bench-fe`` measures
 the strategies and the engine against CalculiX (docs/performance.md, "FE engine";

@@ -14,6 +14,8 @@ straight edges, one node per edge shared by all its tetrahedra.
 :func:`box_tets` meshes a box like :func:`.mesh.box` (no transition layer: the TRI6 faces of
 TET10 are already the faces of the 12-node interface elements) with node sets and face sets
 "xmin" … "zmax" (TRI6 faces, ∂x/∂u × ∂x/∂v outward, :data:`.element.TET10_FACES`).
+:func:`face_labels` gives such a face set's CalculiX face labels S1-S4 (for ``*SURFACE`` and
+``*DLOAD`` lines of a deck written from the mesh).
 """
 
 from __future__ import annotations
@@ -25,7 +27,7 @@ import numpy as np
 from .element import TET10, TET10_FACES, TRI6
 from .mesh import CellBlock, FaceSet, Mesh
 
-__all__ = ["hex_to_tets", "box_tets", "KUHN"]
+__all__ = ["hex_to_tets", "box_tets", "face_labels", "KUHN"]
 
 #: the cube's corners (i, j, k) in C3D8 order
 _CUBE = np.array([(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)])
@@ -90,3 +92,20 @@ def box_tets(x_edges, y_edges, z_edges, name: str = "box") -> Mesh:
         c, s = np.nonzero(hit)
         face_sets[fname] = FaceSet(0, c, all_faces[c, s], TRI6)
     return Mesh(points, (CellBlock("bulk", TET10, cells),), node_sets, face_sets, (), name)
+
+
+def face_labels(cells, face_set) -> np.ndarray:
+    """CalculiX face numbers (1-4: S1-S4 of :data:`.element.TET10_FACES`) of the faces of a
+    TET10 face set (``face_set.cell_indices`` into ``cells`` (c, 10), ``face_set.face_nodes``
+    (n, 6) in TET10_FACES' order, as :func:`box_tets` makes them). A face that is not one of its
+    cell's four is an error naming the face."""
+    cells = np.asarray(cells)[np.asarray(face_set.cell_indices)]
+    faces = np.asarray(face_set.face_nodes)
+    out = np.zeros(len(faces), dtype=np.int64)
+    for s in range(1, 5):
+        out[np.all(cells[:, list(TET10_FACES[s])] == faces, axis=1)] = s
+    bad = np.flatnonzero(out == 0)
+    if bad.size:
+        raise ValueError(f"face_labels: face {int(bad[0])} (nodes {faces[bad[0]].tolist()}) is not a face S1-S4 "
+                         f"of its cell {int(np.asarray(face_set.cell_indices)[bad[0]])}")
+    return out

@@ -1435,3 +1435,528 @@ def _ep_rows_parallel(n_blocks, l_values, g, c, f1, f2, f3, tc1, w_levels, n_lev
     for b in numba.prange(n_blocks):
         _ep_rows(np.arange(b, n, n_blocks), l_values, g, c, f1, f2, f3, tc1, w_levels, n_levels, sigma, E_star,
                  ratio, cH, dp, pv, with_jump, d, width, tol, h0, cw, theta_tol, yt, wt, jt, out, info)
+
+
+# ---------------------------------------------------------------------------------------
+# The summit table (issue 33): the elasto-plastic columns as Gaussian convolutions
+# ---------------------------------------------------------------------------------------
+# With y = g r − t (t = the interference in σ units, r the curvature radius variable) the
+# Gaussian φ(t + l − g r) of the summit measure is φ(l − y), so every column is
+#
+#     column(l) = ∫ φ(l − y) ρ(y) dy,   ρ(y) = Σ_θ w_θ ∫_{r ≥ max(0, y/g)} law(σ t, r c) r³ e^{−r²/2} dr,
+#
+# t = g r − y: ρ depends on the material and the surface, not on the separation
+# (integrals.summit_table tabulates it once and makes every separation one quadrature).
+# Per (y, θ) the r-integral runs in w = √(r − r0), r0 = max(0, y/g) (t ∝ w² at r0 for y > 0,
+# r ∝ w² at r = 0 for y < 0: the t^{1/2}, t^{3/2}, r^{5/2} end-point powers become analytic),
+# split at the regime boundaries τ = r t = t_c1, (ω_p/ω_c) t_c1, graded geometrically from
+# w = √(|y|/g) (the distance of the branch point of √t next to the corner r = t = 0) and cut
+# into pieces of at most ``dr_max`` in r; Gauss–Legendre on each piece.
+_ST_TAIL = 55.0  # the r-range ends where e^{−r²/2} fell by e^{−55} from r0
+_ST_MAX_PIECES = 96
+
+
+@numba.njit(cache=True)
+def _st_r_of_tau(y, g, tau):
+    """The r > 0 with r (g r − y) = τ (τ > 0), without cancellation."""
+    D = math.sqrt(y * y + 4.0 * g * tau)
+    return (y + D) / (2.0 * g) if y >= 0.0 else 2.0 * tau / (D - y)
+
+
+@numba.njit(cache=True)
+def _st_node(y, S, g, c, f1, f2, f3, tc1, sigma, E_star, ratio, cH, dp, ln_r, pv, with_jump, yq, wq, dr_max,
+             edges, acc):
+    """acc[0:8] = ρ at one (y, θ-node) per unit θ-weight, scaled by e^{S}: A^e, A^ep, A^p, W^e,
+    W^ep, W^p, dW/dω (eqs. (46), (47), (54); (76), (75), (77); (61), (67) by regime) and the
+    load-jump density (errata E17) J/σ · r e^{−r²/2}/(g + t_c1/r²) at r(τ = t_c1)."""
+    for q in range(8):
+        acc[q] = 0.0
+    r0 = y / g if y > 0.0 else 0.0
+    t0 = -y if y < 0.0 else 0.0  # t at r = r0
+    r_end = math.sqrt(r0 * r0 + 2.0 * _ST_TAIL)
+    w_end = math.sqrt(r_end - r0)
+    rc = _st_r_of_tau(y, g, tc1)
+    rp = _st_r_of_tau(y, g, ratio * tc1)
+    wc = math.sqrt(min(rc, r_end) - r0)
+    wp = math.sqrt(min(rp, r_end) - r0)
+    # breakpoints in w: 0, the geometric grading, the regime boundaries, w_end
+    n = 0
+    edges[n] = 0.0
+    n += 1
+    d = math.sqrt(abs(y) / g)
+    if d > 1e-4 * w_end:
+        x = d
+        while x < w_end and n < _ST_MAX_PIECES // 2:
+            edges[n] = x
+            n += 1
+            x *= 3.0
+    for b in (wc, wp, w_end):
+        if b > 0.0:
+            edges[n] = b
+            n += 1
+    edges[:n].sort()
+    for i in range(n - 1):
+        a = edges[i]
+        b = edges[i + 1]
+        if b <= a * (1.0 + 1e-15):
+            continue
+        m = int(math.ceil((b * b - a * a) / dr_max))
+        m = max(1, m)
+        h = (b - a) / m
+        mid = 0.5 * (a + b)
+        kind = 0 if mid <= wc else (1 if mid <= wp else 2)
+        for j in range(m):
+            lo = a + j * h
+            for k in range(yq.shape[0]):
+                w = lo + h * yq[k]
+                r = r0 + w * w
+                t = g * w * w + t0
+                e = math.exp(S - 0.5 * r * r) * r * r * r * h * wq[k] * 2.0 * w
+                if kind == 0:
+                    A, W, Sd = _asperity_elastic(sigma * t, r * c, f1, f2, E_star)
+                    acc[0] += A * e
+                    acc[3] += W * e
+                elif kind == 1:
+                    A, W, Sd = _asperity_elastoplastic(sigma * t, r * c, f1, f3, sigma * tc1 / r, ratio, cH, dp,
+                                                       ln_r, math.log(ratio * tc1 / (r * t)))
+                    acc[1] += A * e
+                    acc[4] += W * e
+                else:
+                    A, W, Sd = _asperity_plastic(sigma * t, r * c, f3, cH)
+                    acc[2] += A * e
+                    acc[5] += W * e
+                acc[6] += Sd * e
+    if with_jump:
+        Ae, We, _ = _asperity_elastic(sigma * tc1, c, f1, f2, E_star)
+        acc[7] = (Ae * pv - We) / sigma * rc * math.exp(S - 0.5 * rc * rc) / (g + tc1 / (rc * rc))
+
+
+@numba.njit(cache=True)
+def _st_rho(i, y_values, g, c, f1, f2, f3, tc1, w_levels, n_levels, sigma, E_star, ratio, cH, dp, pv, with_jump,
+            g_max, yq, wq, dr_max, theta_tol, out, info):
+    """out[i] = ln ρ(y_i) (8 columns; −745 where a column is 0), θ-levels added until the
+    estimated θ-error e·min(1, e/e_prev) ≤ theta_tol; info[i] = (level used, estimate)."""
+    y = y_values[i]
+    S = 0.5 * y * y / (g_max * g_max) if y > 0.0 else 0.0  # ρ ≤ e^{−S}·O(1): scaled out
+    ln_r = math.log(ratio)
+    n_all = n_levels[n_levels.shape[0] - 1]
+    node = np.empty((n_all, 8))
+    acc = np.empty(8)
+    edges = np.empty(_ST_MAX_PIECES)
+    cur = np.zeros(8)
+    prev = np.zeros(8)
+    done = 0
+    e_prev = math.inf
+    est = math.inf
+    used = 0
+    for m in range(n_levels.shape[0]):
+        for j in range(done, n_levels[m]):
+            _st_node(y, S, g[j], c[j], f1[j], f2[j], f3[j], tc1[j], sigma, E_star, ratio, cH, dp, ln_r, pv,
+                     with_jump, yq, wq, dr_max, edges, acc)
+            for q in range(8):
+                node[j, q] = acc[q]
+        done = n_levels[m]
+        est, e_prev = _ep_level_sum(m, n_levels, w_levels, node, cur, prev, e_prev)
+        used = m
+        if est <= theta_tol:
+            break
+    for q in range(8):
+        out[i, q] = (math.log(cur[q]) if cur[q] > 0.0 else -745.0) - S
+    info[i, 0] = used
+    info[i, 1] = est
+
+
+@numba.njit(cache=True, parallel=True)
+def _st_rho_array(y_values, g, c, f1, f2, f3, tc1, w_levels, n_levels, sigma, E_star, ratio, cH, dp, pv,
+                  with_jump, g_max, yq, wq, dr_max, theta_tol, out, info):
+    """_st_rho at every y (threads over y)."""
+    for i in numba.prange(y_values.shape[0]):
+        _st_rho(np.int64(i), y_values, g, c, f1, f2, f3, tc1, w_levels, n_levels, sigma, E_star, ratio, cH, dp, pv,
+                with_jump, g_max, yq, wq, dr_max, theta_tol, out, info)
+
+
+@numba.njit(cache=True)
+def _st_columns(l_values, y, log_scale, weights, out):
+    """out[i] = Σ_j exp(log_scale_j − (l_i − y_j)²/2) weights[j]: the convolution (1) of
+    integrals.summit_table at every separation. One thread: ~1 µs per (l, 100 nodes), less
+    than waking a thread pool on a loaded machine."""
+    n_q = weights.shape[1]
+    for i in range(l_values.shape[0]):
+        l = l_values[i]
+        acc = np.zeros(n_q)
+        for j in range(y.shape[0]):
+            d = l - y[j]
+            x = log_scale[j] - 0.5 * d * d
+            if x > -745.0:
+                e = math.exp(x)
+                for q in range(n_q):
+                    acc[q] += e * weights[j, q]
+        for q in range(n_q):
+            out[i, q] = acc[q]
+
+
+# ---------------------------------------------------------------------------------------
+# The shared summit table (issue 33): one build for every material of a surface
+# ---------------------------------------------------------------------------------------
+# Eq. (65) makes t_c1(θ) = β T(θ): β = (K_Y Y/E*)² is the only material factor (T = t_c1 of a
+# reference material, β relative to it). In u = τ/T(θ), v = ln u, every piece of the law of
+# _st_node is a material-free density of v times a function of u and the material constants:
+#   (46), (47), (54) below u = β:  πσ·f1/c t r², (4/3)E* σ^{3/2}·f2/√c t^{3/2} r^{5/2}, 2E* σ^{1/2}·f2/√c t^{1/2} r^{5/2};
+#   (61), (67), d(67)/dω above u = Rβ (R = ω_p/ω_c): 2πσ·f3/c t r², c_h H times it, 2π c_h H·f3/c r²;
+#   (76), (75), (77) between: the bracket f1 + (2f3 − f1)G = (1 − G) f1 + 2G f3 with G, dG/dx and
+#   the pressure (75) functions of x = (u/β − 1)/(R − 1) and ln(Rβ/u) = ln(Rβ) − v only;
+#   the load jump (errata E17) at u = β: π (2/3)K_v H·f1/c r² − (4/3)E* σ^{1/2} β^{1/2}·f2 √T/√c r²
+#   (a θ-sum at v = ln β itself),
+# each (with the measure r³ e^{−r²/2} dr folded in, dr = τ/(g r + t) dv) summed over θ at fixed v:
+#   D_q(y, v) = Σ_θ w_θ h_q(θ) m_q(r, t) e^{−r²/2} τ/(g r + t),   r (g r − y) = τ = e^v T(θ), t = τ/r,
+# q = 0 … 6: f1/c t r², f3/c t r², f2/√c t^{3/2} r^{5/2}, f2/√c t^{1/2} r^{5/2}, f1/c r², f3/c r², f2 √T/√c r².
+# Per y, ln D_q is interpolated on panels of v (Chebyshev–Lobatto, bisected to the tolerance);
+# each material's ρ(y) is then the cumulative integrals of D at ln β and ln(Rβ) and a Gauss–
+# Legendre integral over [ln β, ln Rβ] — no r-quadrature per material.
+_SH_Q = 7
+_SH_DEG = 16
+_SH_MAX_PANELS = 192
+_SH_MAX_DEPTH = 7  # bisections of a v-panel
+_SH_BELOW = 20.0  # v_lo below the bulk: the lowest power of the lower tail is u^{3/2} (S^e, y > 0): e^{−30}
+_SH_SPREAD = 20.0  # a panel's ln D may vary by this much: 20 Gauss–Legendre nodes integrate e^{ax}, |a| ≤ 10, to ~1e-17
+_SH_WIDTH = 4.0
+
+
+@numba.njit(cache=True)
+def _sh_node(y, S, ev, g, h1, h3, h2, h2t, T, acc):
+    """acc[0:7] = the seven densities D_q at one (y, v, θ-node), per unit θ-weight, scaled by e^S
+    (ev = e^v: τ = e^v T(θ))."""
+    tau = ev * T
+    r = _st_r_of_tau(y, g, tau)
+    t = tau / r
+    e = math.exp(S - 0.5 * r * r) * tau / (g * r + t)
+    r2 = r * r * e
+    st = math.sqrt(tau)  # (r t)^{1/2}
+    a = t * r2
+    acc[0] = h1 * a
+    acc[1] = h3 * a
+    acc[2] = h2 * a * st
+    acc[3] = h2 * r2 * st
+    acc[4] = h1 * r2
+    acc[5] = h3 * r2
+    acc[6] = h2t * r2
+
+
+@numba.njit(cache=True)
+def _sh_density(y, S, v, g, h1, h3, h2, h2t, T, w_levels, n_levels, theta_tol, floor, node, acc, cur, out):
+    """out[0:7] = D_q(y, v): θ-levels added until the estimated θ-error (per density, relative
+    to max(D_q, floor_q)) ≤ theta_tol; returns (estimate, θ-nodes used)."""
+    ev = math.exp(v)
+    done = 0
+    e_prev = math.inf
+    est = math.inf
+    for m in range(n_levels.shape[0]):
+        for j in range(done, n_levels[m]):
+            _sh_node(y, S, ev, g[j], h1[j], h3[j], h2[j], h2t[j], T[j], acc)
+            for q in range(_SH_Q):
+                node[j, q] = acc[q]
+        done = n_levels[m]
+        e = 0.0
+        for q in range(_SH_Q):
+            s = 0.0
+            for j in range(done):
+                s += w_levels[m, j] * node[j, q]
+            if m > 0:
+                scale = max(s, floor[q])
+                d = abs(s - cur[q])
+                if scale > 0.0:
+                    e = max(e, d / scale)
+                elif d > 0.0:
+                    e = math.inf
+            cur[q] = s
+        if m > 0:
+            est = e * min(1.0, e / e_prev) if 0.0 < e_prev < math.inf else e
+            e_prev = e
+            if est <= theta_tol:
+                break
+    for q in range(_SH_Q):
+        out[q] = cur[q]
+    return est, done
+
+
+@numba.njit(cache=True)
+def _sh_panel_integral(C, p, lo, hi, a, b, xg, wg, out):
+    """out[q] = ∫_a^b e^{ln D_q} dv, q = 0 … 5, on [a, b] ⊂ panel p = [lo, hi] (Gauss–Legendre on
+    the interpolant). (The columns are a loop, not an argument: a literal column number would
+    give the kernel one signature per column, tests/integrals/test_kernels.py.)"""
+    n = C.shape[2] - 1
+    h = b - a
+    for q in range(6):
+        out[q] = 0.0
+    for k in range(xg.shape[0]):
+        x = (2.0 * (a + h * xg[k]) - lo - hi) / (hi - lo)
+        for q in range(6):
+            out[q] += wg[k] * math.exp(_clenshaw(C[p, q], n, x))
+    for q in range(6):
+        out[q] *= h
+
+
+@numba.njit(cache=True)
+def _sh_cumulative(vs, P, lo, hi, C, cum, xg, wg, out):
+    """out[q] = ∫_{−∞}^{vs} D_q dv, q = 0 … 5 (panels sorted and contiguous; below them the
+    power-law tail cum[0], above them the total)."""
+    if vs <= lo[0]:
+        for q in range(6):
+            out[q] = cum[0, q] * math.exp(min(0.0, vs - lo[0]))  # the tail, at slope ≥ 1 (an upper bound)
+        return
+    if vs >= hi[P - 1]:
+        for q in range(6):
+            out[q] = cum[P, q]
+        return
+    p = 0
+    while hi[p] < vs:
+        p += 1
+    _sh_panel_integral(C, p, lo[p], hi[p], lo[p], vs, xg, wg, out)
+    for q in range(6):
+        out[q] += cum[p, q]
+
+
+@numba.njit(cache=True)
+def _sh_material(P, lo, hi, C, cum, xg, wg, vb, lnR, sigma, E_star, cH, dp, col):
+    """col[0:7] = ρ of one material (β = e^{vb}, R = e^{lnR}) at this y from the panels: the columns of
+    _st_node (A^e, A^ep, A^p, W^e, W^ep, W^p, dW/dω), eqs. (46), (47), (54); (76), (75), (77);
+    (61), (67); col[7] = 0 (the load jump is _sh_rho's)."""
+    vr = vb + lnR
+    R = math.exp(lnR)
+    pi = math.pi
+    n = C.shape[2] - 1
+    cb = np.empty(6)
+    cr = np.empty(6)
+    _sh_cumulative(vb, P, lo, hi, C, cum, xg, wg, cb)
+    _sh_cumulative(vr, P, lo, hi, C, cum, xg, wg, cr)
+    col[0] = pi * sigma * cb[0]
+    col[3] = (4.0 / 3.0) * E_star * sigma * math.sqrt(sigma) * cb[2]
+    se = 2.0 * E_star * math.sqrt(sigma) * cb[3]
+    col[2] = 2.0 * pi * sigma * (cum[P, 1] - cr[1])
+    col[5] = cH * col[2]
+    sp = 2.0 * pi * cH * (cum[P, 5] - cr[5])
+    a_ep = 0.0
+    w_ep = 0.0
+    s_ep = 0.0
+    va = max(vb, lo[0])
+    vz = min(vr, hi[P - 1])
+    if vz > va:
+        for p in range(P):
+            a = max(va, lo[p])
+            b = min(vz, hi[p])
+            if b <= a:
+                continue
+            h = b - a
+            for k in range(xg.shape[0]):
+                v = a + h * xg[k]
+                x = (2.0 * v - lo[p] - hi[p]) / (hi[p] - lo[p])
+                d1 = math.exp(_clenshaw(C[p, 0], n, x))
+                d3 = math.exp(_clenshaw(C[p, 1], n, x))
+                k1 = math.exp(_clenshaw(C[p, 4], n, x))
+                k3 = math.exp(_clenshaw(C[p, 5], n, x))
+                ub = math.exp(v - vb)  # ω/ω_c = u/β
+                xx = (ub - 1.0) / (R - 1.0)
+                G = xx * xx * (3.0 - 2.0 * xx)  # blend, asperity.blend
+                dg = 6.0 * xx * (1.0 - xx)
+                pr = cH - dp * (vr - v) / lnR  # eq. (75), ln(ω_p/ω) = ln(Rβ) − v
+                A = (1.0 - G) * d1 + 2.0 * G * d3  # eq. (76) per πσ
+                kb = (1.0 - G) * k1 + 2.0 * G * k3
+                wk = wg[k] * h
+                a_ep += wk * A
+                w_ep += wk * A * pr
+                s_ep += wk * ((kb + dg * (2.0 * k3 - k1) * ub / (R - 1.0)) * pr + kb * dp / lnR)
+    col[1] = pi * sigma * a_ep
+    col[4] = pi * sigma * w_ep
+    col[6] = se + pi * s_ep + sp
+    col[7] = 0.0  # the load jump: _sh_rho (a θ-sum at v = ln β)
+
+
+@numba.njit(cache=True)
+def _sh_panel_fit(L, C, p, gmax):
+    """Chebyshev coefficients of ln D (L: (deg+1, 7) at the Lobatto nodes) into C[p]; returns the
+    panel's error: the largest last-two-coefficient tail per density (relieved where the panel's
+    D_q is below 1e-3 of its largest), inf where ln D varies by more than _SH_SPREAD (steep panel)
+    or a significant density is 0 at a node."""
+    err = 0.0
+    vals = np.empty(_SH_DEG + 1)
+    for q in range(_SH_Q):
+        lmax = -math.inf
+        lmin = math.inf
+        for k in range(_SH_DEG + 1):
+            lmax = max(lmax, L[k, q])
+            lmin = min(lmin, L[k, q])
+            vals[k] = L[k, q]
+        _cheb_coefficients(vals, vals.shape[0] - 1, C[p, q])
+        if gmax[q] <= 0.0 or lmax < math.log(gmax[q]) - 39.0:  # negligible: e^{−39} of its largest
+            continue
+        if lmin < -700.0 or lmax - lmin > _SH_SPREAD:
+            return math.inf
+        tail = max(abs(C[p, q, _SH_DEG]), abs(C[p, q, _SH_DEG - 1]))
+        relief = max(1.0, 1e-3 * gmax[q] / math.exp(lmax))
+        err = max(err, tail / relief)
+    return err
+
+
+@numba.njit(cache=True)
+def _sh_rho(i, y_values, g, h1, h3, h2, h2t, lnT, w_levels, n_levels, g_max, theta_tol, v_tol, xg, wg, lnb, lnR,
+            sigma, E_star, cH, dp, pv, with_jump, layout, out, info):
+    """out[i, k] = ln ρ of material k at y_i (8 columns, −745 − S where a column is 0; the
+    columns of _st_rho) from one set of v-panels of the densities D_q; info[i] = (largest
+    θ-error estimate, v-nodes, largest accepted v-tail, panels, θ-node evaluations).
+    ``layout``: [count, widths of the panels from the top down] of the previous (neighbouring)
+    y, the initial panels here (then _SH_WIDTH), overwritten with this y's accepted panels."""
+    y = y_values[i]
+    S = 0.5 * y * y / (g_max * g_max) if y > 0.0 else 0.0
+    n_all = n_levels[n_levels.shape[0] - 1]
+    T = np.exp(lnT)
+    v_lo = math.inf
+    v_hi = -math.inf
+    v_mid = 0.0
+    for j in range(n_all):  # the range of v: the bulk (r² = r0² + 3) − _SH_BELOW … the r-range's end
+        r0 = y / g[j] if y > 0.0 else 0.0
+        rb = math.sqrt(r0 * r0 + 3.0)
+        re = math.sqrt(r0 * r0 + 2.0 * _ST_TAIL)
+        tb = g[j] * 3.0 / (rb + r0) if y > 0.0 else g[j] * rb - y
+        te = g[j] * 2.0 * _ST_TAIL / (re + r0) if y > 0.0 else g[j] * re - y
+        vb_ = math.log(rb * tb) - lnT[j]
+        v_lo = min(v_lo, vb_)
+        v_hi = max(v_hi, math.log(re * te) - lnT[j])
+        v_mid += vb_ / n_all
+    v_lo -= _SH_BELOW
+    node = np.empty((n_all, _SH_Q))
+    acc = np.empty(_SH_Q)
+    cur = np.empty(_SH_Q)
+    dens = np.empty(_SH_Q)
+    floor = np.zeros(_SH_Q)
+    gmax = np.zeros(_SH_Q)
+    # the densities' scale at the bulk: the θ-error's floor (1e-4 of it) and the panels' relief
+    worst_theta = 0.0
+    n_eval = 0
+    n_theta = 0
+    for vp in (v_mid - 1.0, v_mid + 1.0):
+        e, _ = _sh_density(y, S, vp, g, h1, h3, h2, h2t, T, w_levels, n_levels, theta_tol, floor, node, acc, cur,
+                           dens)
+        n_eval += 1
+        for q in range(_SH_Q):
+            gmax[q] = max(gmax[q], dens[q])
+    for q in range(_SH_Q):
+        floor[q] = 1e-4 * gmax[q]  # a tenth of the panels' relief (1e-3): θ-noise below their tolerance
+    lo = np.empty(_SH_MAX_PANELS)
+    hi = np.empty(_SH_MAX_PANELS)
+    depth = np.zeros(_SH_MAX_PANELS, dtype=np.int64)
+    ok = np.zeros(_SH_MAX_PANELS, dtype=np.bool_)
+    C = np.empty((_SH_MAX_PANELS, _SH_Q, _SH_DEG + 1))
+    L = np.empty((_SH_DEG + 1, _SH_Q))
+    # initial panels from the top down: the neighbour's accepted ones, else widths 1, 1, 2 (the
+    # e^{−r²/2} end of the range, where ln D falls like −e^v), then _SH_WIDTH (measured: wider
+    # ones below the bulk are bisected back)
+    n_prev = int(layout[0])
+    P = 0
+    b = v_hi
+    while b > v_lo:
+        if P < n_prev:
+            w = layout[1 + P]
+        else:
+            w = 1.0 if (n_prev == 0 and P < 2) else (2.0 if (n_prev == 0 and P == 2) else _SH_WIDTH)
+        a = b - w
+        if a - v_lo < 0.5 * w:
+            a = v_lo
+        if P == _SH_MAX_PANELS // 2 - 1:  # room for bisections: the last initial panel reaches v_lo
+            a = v_lo
+        lo[P] = a
+        hi[P] = b
+        P += 1
+        b = a
+    worst_v = 0.0
+    changed = True
+    while changed:
+        changed = False
+        p = 0
+        while p < P:
+            if ok[p]:
+                p += 1
+                continue
+            a = lo[p]
+            b = hi[p]
+            for k in range(_SH_DEG + 1):
+                v = 0.5 * (a + b) + 0.5 * (b - a) * math.cos(math.pi * k / _SH_DEG)
+                e, used = _sh_density(y, S, v, g, h1, h3, h2, h2t, T, w_levels, n_levels, theta_tol, floor, node,
+                                      acc, cur, dens)
+                n_eval += 1
+                n_theta += used
+                if e < math.inf:
+                    worst_theta = max(worst_theta, e)
+                for q in range(_SH_Q):
+                    gmax[q] = max(gmax[q], dens[q])
+                    L[k, q] = math.log(dens[q]) if dens[q] > 0.0 else -745.0
+            err = _sh_panel_fit(L, C, np.int64(p), gmax)  # int64: p starts as the literal 0
+            if err <= v_tol or depth[p] >= _SH_MAX_DEPTH or P >= _SH_MAX_PANELS:
+                ok[p] = True
+                if err < math.inf:
+                    worst_v = max(worst_v, err)
+                else:
+                    worst_v = math.inf
+                p += 1
+            else:
+                c = 0.5 * (a + b)
+                hi[p] = c
+                depth[p] += 1
+                lo[P] = c
+                hi[P] = b
+                depth[P] = depth[p]
+                ok[P] = False
+                P += 1
+                changed = True
+    # panels in order, their integrals and the cumulative sums
+    order = np.argsort(lo[:P])
+    lo_s = lo[:P][order].copy()
+    hi_s = hi[:P][order].copy()
+    layout[0] = P
+    for k in range(P):
+        layout[1 + k] = hi_s[P - 1 - k] - lo_s[P - 1 - k]
+    Cs = np.empty((P, _SH_Q, _SH_DEG + 1))
+    for k in range(P):
+        Cs[k] = C[order[k]]
+    cum = np.zeros((P + 1, _SH_Q))
+    part = np.empty(6)
+    # below v_lo: the power-law tail D(v_lo)/(d ln D/dv) (≤ e^{−30} of the bulk: a second-order correction)
+    deg = Cs.shape[2] - 1
+    dv = 0.5 * (hi_s[0] - lo_s[0]) * (1.0 - math.cos(math.pi / deg))
+    for q in range(6):
+        l0 = _clenshaw(Cs[0, q], deg, -1.0)
+        l1 = _clenshaw(Cs[0, q], deg, -1.0 + (1.0 - math.cos(math.pi / deg)))
+        slope = max((l1 - l0) / dv, 1.0)
+        cum[0, q] = math.exp(l0) / slope
+    for k in range(P):
+        _sh_panel_integral(Cs, k, lo_s[k], hi_s[k], lo_s[k], hi_s[k], xg, wg, part)
+        for q in range(6):
+            cum[k + 1, q] = cum[k, q] + part[q]
+    col = np.empty(8)
+    zero = np.zeros(_SH_Q)
+    for k in range(lnb.shape[0]):
+        _sh_material(P, lo_s, hi_s, Cs, cum, xg, wg, lnb[k], lnR[k], sigma, E_star[k], cH[k], dp[k], col)
+        if with_jump[k]:  # errata E17 at u = β, directly (no panel reaches every y's first yield)
+            _sh_density(y, S, lnb[k], g, h1, h3, h2, h2t, T, w_levels, n_levels, theta_tol, zero, node, acc, cur, dens)
+            col[7] = math.pi * pv[k] * dens[4] \
+                - (4.0 / 3.0) * E_star[k] * math.sqrt(sigma) * math.exp(0.5 * lnb[k]) * dens[6]
+        for q in range(8):
+            out[i, k, q] = (math.log(col[q]) if col[q] > 0.0 else -745.0) - S
+    info[i, 0] = worst_theta
+    info[i, 1] = n_eval
+    info[i, 2] = worst_v
+    info[i, 3] = P
+    info[i, 4] = n_theta
+
+
+@numba.njit(cache=True, parallel=True)
+def _sh_rho_array(y_values, g, h1, h3, h2, h2t, lnT, w_levels, n_levels, g_max, theta_tol, v_tol, xg, wg, lnb, lnR,
+                  sigma, E_star, cH, dp, pv, with_jump, out, info):
+    """_sh_rho at every y: threads over contiguous blocks of y (neighbours in a block start from
+    each other's v-panels: the Lobatto nodes of a y-panel are consecutive)."""
+    n = y_values.shape[0]
+    n_blocks = min(n, 4 * numba.get_num_threads())
+    for b in numba.prange(n_blocks):
+        layout = np.zeros(_SH_MAX_PANELS + 1)
+        for i in range(b * n // n_blocks, (b + 1) * n // n_blocks):
+            _sh_rho(np.int64(i), y_values, g, h1, h3, h2, h2t, lnT, w_levels, n_levels, g_max, theta_tol, v_tol, xg,
+                    wg, lnb, lnR, sigma, E_star, cH, dp, pv, with_jump, layout, out, info)

@@ -31,14 +31,17 @@ unit) and per law length.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from importlib import resources
+
+import numpy as np
 
 from ..limits import describe
 from .friction import (FORM_END, FORM_SECANT, FORM_START, Frictionless, IsotropicHardening, NoSlip,
                        OrthotropicHardening, TANGENTIAL_FORMS)
 from .normal_law import InterfaceLaw
 
-__all__ = ["MODEL_CODES", "SOURCES", "DATA_FILE", "fortran_source", "law_data_module"]
+__all__ = ["MODEL_CODES", "SOURCES", "DATA_FILE", "LawConstants", "fortran_source", "law_constants", "law_data_module"]
 
 #: the model codes of roughcontact_law.f90 (RC_NO_LIMIT, RC_ISOTROPIC, RC_ORTHOTROPIC)
 MODEL_CODES = {Frictionless: 0, NoSlip: 0, IsotropicHardening: 1, OrthotropicHardening: 2}
@@ -80,20 +83,30 @@ def _name(interaction: str) -> str:
     return name
 
 
-def law_data_module(law: InterfaceLaw, model, *, interaction: str, law_per_deck: float,
-                    lay_direction=(1.0, 0.0, 0.0), tangential_form: str = "incremental-end", tol: float = 1e-12,
-                    header: tuple[str, ...] = ()) -> str:
-    """The Fortran module ``roughcontact_law_data`` of one interaction's law (module docstring).
+@dataclass(frozen=True)
+class LawConstants:
+    """What roughcontact_law.f90's rc_update needs of one law (the module docstring's list):
+    model and tangential-form codes, the return mapping's tolerance, h_ref [law length], the
+    tangential factors stiff = (k_Tx/k_N, k_Ty/k_N, 1), the model's parameters ``par``, the
+    kernel table ``tab`` (n, 4) of the extrapolated law, u_max, p_max, law_per_deck and the lay."""
 
-    law             the engine's InterfaceLaw (tabulated p_N(u_N), k_N(u_N), k_T = a k_N).
-    model           Frictionless, NoSlip, IsotropicHardening or OrthotropicHardening (n in
-                    1/law length, as the engine's InterfaceMaterial holds it).
-    interaction     the *SURFACE INTERACTION name (UINTER checks CINAME against it).
-    law_per_deck    law length units per deck length unit (fe.laws.InteractionLaw.law_per_deck).
-    lay_direction   the lay (the law's x axis) in the deck's axes, for UINTER's local frame.
-    tangential_form one of friction.TANGENTIAL_FORMS; tol: the return mapping's (0, 1e-6].
-    header          comment lines (provenance) for the top of the file.
-    """
+    model: int
+    form: int
+    tol: float
+    h_ref: float
+    stiff: tuple
+    par: np.ndarray
+    tab: np.ndarray
+    u_max: float
+    p_max: float
+    law_per_deck: float
+    lay: tuple
+
+
+def law_constants(law: InterfaceLaw, model, *, law_per_deck: float, lay_direction=(1.0, 0.0, 0.0),
+                  tangential_form: str = "incremental-end", tol: float = 1e-12) -> LawConstants:
+    """The :class:`LawConstants` of an engine law (arguments as :func:`law_data_module`),
+    checked: one-line errors for anything the Fortran cannot take."""
     if not isinstance(law, InterfaceLaw):
         raise TypeError(f"law must be an InterfaceLaw, got {type(law).__name__}")
     if type(model) not in MODEL_CODES:
@@ -108,9 +121,35 @@ def law_data_module(law: InterfaceLaw, model, *, interaction: str, law_per_deck:
     lay = [float(v) for v in lay_direction]
     if len(lay) != 3 or not all(map(math.isfinite, lay)) or math.hypot(*lay) == 0.0:
         raise ValueError(f"lay_direction must be a non-zero vector [x, y, z], got {describe(lay_direction)}")
-    name = _name(interaction)
     tab, h_ref, (ax, ay) = law.extrapolated().kernel_data()
-    par = model.params()
+    for what, values in (("the law table", tab), ("a friction parameter", model.params()), ("h_ref", [h_ref]),
+                         ("k_T/k_N", [ax, ay])):
+        bad = ~np.isfinite(np.asarray(values, dtype=float))
+        if np.any(bad):
+            raise ValueError(f"{what} is not finite ({describe(np.asarray(values, dtype=float)[bad][0])})")
+    return LawConstants(MODEL_CODES[type(model)], _FORM_CODES[tangential_form], float(tol), float(h_ref),
+                        (float(ax), float(ay), 1.0), np.asarray(model.params(), dtype=float), np.asarray(tab, dtype=float),
+                        float(law.u_max), float(law.table.p_max), float(law_per_deck), tuple(lay))
+
+
+def law_data_module(law: InterfaceLaw, model, *, interaction: str, law_per_deck: float,
+                    lay_direction=(1.0, 0.0, 0.0), tangential_form: str = "incremental-end", tol: float = 1e-12,
+                    header: tuple[str, ...] = ()) -> str:
+    """The Fortran module ``roughcontact_law_data`` of one interaction's law (module docstring).
+
+    law             the engine's InterfaceLaw (tabulated p_N(u_N), k_N(u_N), k_T = a k_N).
+    model           Frictionless, NoSlip, IsotropicHardening or OrthotropicHardening (n in
+                    1/law length, as the engine's InterfaceMaterial holds it).
+    interaction     the *SURFACE INTERACTION name (UINTER checks CINAME against it).
+    law_per_deck    law length units per deck length unit (fe.laws.InteractionLaw.law_per_deck).
+    lay_direction   the lay (the law's x axis) in the deck's axes, for UINTER's local frame.
+    tangential_form one of friction.TANGENTIAL_FORMS; tol: the return mapping's (0, 1e-6].
+    header          comment lines (provenance) for the top of the file.
+    """
+    c = law_constants(law, model, law_per_deck=law_per_deck, lay_direction=lay_direction,
+                      tangential_form=tangential_form, tol=tol)
+    name = _name(interaction)
+    tab, par, (ax, ay, _) = c.tab, c.par, c.stiff
     n = tab.shape[0]
     lines = [f"! {line}" for line in header]
     lines += [
@@ -121,22 +160,22 @@ def law_data_module(law: InterfaceLaw, model, *, interaction: str, law_per_deck:
         "  implicit none",
         "  private",
         f"  character(len=*), parameter, public :: rc_interaction = '{name}'",
-        f"  integer, parameter, public :: rc_model = {MODEL_CODES[type(model)]}"
+        f"  integer, parameter, public :: rc_model = {c.model}"
         f"  ! {type(model).__name__}",
         f"  integer, parameter, public :: rc_npar = {par.size}",
         f"  real(rc_dp), parameter, public :: rc_par(rc_npar) = {_array(par, 'a friction parameter')}",
         "  ! (k_Tx/k_N, k_Ty/k_N, unused): k_T = a k_N(u_N)",
         f"  real(rc_dp), parameter, public :: rc_stiff(3) = {_array((ax, ay, 1.0), 'k_T/k_N')}",
-        f"  integer, parameter, public :: rc_form = {_FORM_CODES[tangential_form]}  ! {tangential_form}",
+        f"  integer, parameter, public :: rc_form = {c.form}  ! {tangential_form}",
         f"  real(rc_dp), parameter, public :: rc_tol = {_real(tol, 'tol')}",
         "  ! reference separation h_ref [law length]: u_N = h_ref - h, p_N(0) = the seating pressure",
-        f"  real(rc_dp), parameter, public :: rc_h_ref = {_real(h_ref, 'h_ref')}",
+        f"  real(rc_dp), parameter, public :: rc_h_ref = {_real(c.h_ref, 'h_ref')}",
         "  ! the tabulated heavy end: closures u_N > rc_u_max (p_N > rc_p_max) lie in the tangent tail",
-        f"  real(rc_dp), parameter, public :: rc_u_max = {_real(law.u_max, 'u_max')}",
-        f"  real(rc_dp), parameter, public :: rc_p_max = {_real(law.table.p_max, 'p_max')}",
+        f"  real(rc_dp), parameter, public :: rc_u_max = {_real(c.u_max, 'u_max')}",
+        f"  real(rc_dp), parameter, public :: rc_p_max = {_real(c.p_max, 'p_max')}",
         "  ! law length units per deck length unit; the lay (the law's x axis) in the deck's axes",
         f"  real(rc_dp), parameter, public :: rc_law_per_deck = {_real(law_per_deck, 'law_per_deck')}",
-        f"  real(rc_dp), parameter, public :: rc_lay(3) = {_array(lay, 'lay_direction')}",
+        f"  real(rc_dp), parameter, public :: rc_lay(3) = {_array(c.lay, 'lay_direction')}",
         f"  integer, parameter, public :: rc_ntab = {n}",
         "  ! rows (h, q = ln p_N, q', q''), h ascending: NormalLawTable.kernel_table with the heavy tail",
         "  real(rc_dp), public :: rc_tab(rc_ntab, 4)",

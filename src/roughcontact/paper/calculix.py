@@ -353,10 +353,12 @@ def _stations(px, py, u, x_edges):
 SCENE = "calculix"
 
 
-def _check(model, quantity, row, row_key, ok, detail, description, target, value, error, tol, why, unit=""):
+def _check(model, quantity, row, row_key, ok, detail, description, target, value, error, tol, why, unit="",
+           scene=SCENE):
+    """A numerics check of a CalculiX scene (``scene``: this one, or ccx_friction's)."""
     from .verify import NOT_REPRODUCED, REPRODUCED, Check, numerics_id
 
-    return Check(id=numerics_id(SCENE, model, quantity, row, row_key), kind="numerics", scene=SCENE,
+    return Check(id=numerics_id(scene, model, quantity, row, row_key), kind="numerics", scene=scene,
                  verdict=REPRODUCED if ok else NOT_REPRODUCED, detail=detail, description=description,
                  model=model, quantity=quantity, s=row, unit=unit, target=float(target), value=float(value),
                  error=float(error), tolerance=float(tol), tolerance_why=why)
