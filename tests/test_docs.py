@@ -49,9 +49,12 @@ def test_measured_numbers_name_their_report_and_conditions():
     assert "goal met" not in speed and "recorded runs" in speed
     assert "4e-13" not in _table_row("ep_numerics")
     assert "paper_figures/ep_numerics.csv" in _table_row("ep_numerics")
-    # the 5-minute reproduction goal is stated as not met, with where each run records its time
-    assert re.search(r"5 minutes on 2 cores: \*\*not met\*\*", PERFORMANCE)
-    assert "paper_figures/reproduction_time.md" in PERFORMANCE
+    # the reproduction's measured time (issue 33: 5 minutes on 2 cores) with its conditions — the
+    # commit, a fresh clone, with or without ccx, the load average — and where each run records its time
+    section = PERFORMANCE.split("## `make reproduce` from a fresh clone", 1)[1].split("\n## ", 1)[0]
+    m = re.search(r"commit (\w+), on an idle 2-core machine.*?took\s+\*\*(\d+) s in all", section, re.S)
+    assert m and "load average" in section and "without `ccx`" in section
+    assert "paper_figures/reproduction_time.md" in section
 
 
 def test_the_workflow_page_says_what_to_do_after_a_hard_kill():
