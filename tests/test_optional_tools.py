@@ -20,6 +20,7 @@ The browser of tests/test_browser.py skips with one line where chromium is absen
 
 import json
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -350,9 +351,12 @@ def test_performance_page_states_the_fresh_clone_time_with_the_venv_and_the_load
     """docs/performance.md's last section (the README's until issue 33)."""
     page = (ROOT / "docs" / "performance.md").read_text()
     readme = " ".join(page.split("\n## `make reproduce` from a fresh clone", 1)[1].split("\n## ", 1)[0].split())
-    assert "5 minutes on 2 cores: **not met**" in readme
+    # issue 33's measurement (5 minutes on 2 cores): its total, .venv/ and the workflow, the load
+    latest = re.search(r"without `ccx` \(hidden from PATH\).*?`make reproduce` took \*\*(\d+) s in all: (\d+) s "
+                       r"creating `.venv/`, (\d+) s the workflow\*\* \(load average [\d.]+ at the start, [\d.]+ at "
+                       r"the end\)", readme)
+    assert latest and int(latest[1]) >= int(latest[2]) + int(latest[3]), "the fresh-clone time, with .venv/ and the load"
     assert "including creating `.venv/`" in readme and "paper_figures/reproduction_time.md" in readme
-    import re
 
     m = re.search(r"From a fresh clone of commit \w+ without `ccx`, `CORES=2 make reproduce` took \*\*(\d+) s in all: "
                   r"(\d+) s creating `.venv/`, (\d+) s the workflow\*\*, on 2 cores .*?\(load average [\d.]+ at the start, "
