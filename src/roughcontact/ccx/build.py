@@ -133,11 +133,13 @@ class BuildError(RuntimeError):
 
 @dataclass(frozen=True)
 class Build:
-    """A built ccx: the executable, its folder and its provenance (build.json)."""
+    """A built ccx: the executable, its folder, its provenance (build.json) and whether it was
+    found in the cache (rather than built by this call)."""
 
     executable: Path
     folder: Path
     info: dict
+    cached: bool = True
 
 
 def cache_root() -> Path:
@@ -308,4 +310,4 @@ def build_ccx(*, source: Path | None = None, root: Path | None = None, jobs: int
         shutil.rmtree(final)
     os.replace(work, final)
     progress(f"ccx build: {final / 'ccx'}")
-    return Build(final / "ccx", final, info)
+    return Build(final / "ccx", final, info, cached=False)

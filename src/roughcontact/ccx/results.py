@@ -107,9 +107,10 @@ def summary(deck, laws, pairs, dat: str, sta: str, log: str, seconds: float, *, 
     step when a print is missing (ccx stopped before the step's end)."""
     printed = prints(dat)
     x, frames, areas = _points(deck, pairs)
-    um = np.concatenate([np.full(p.ids.size * USER_TYPES[p.face].n_points,
+    counts = [p.ids.size * USER_TYPES[p.face].n_points for p in pairs]  # interface points per pair
+    um = np.concatenate([np.full(n,
                                  10.0 ** (LENGTH_UNITS[laws.interactions[p.interaction].moments_unit] - LENGTH_UNITS["um"]))
-                         for p in pairs])
+                         for n, p in zip(counts, pairs)])
     increments = sta_increments(sta)
     steps = []
     for step, t_end in zip(deck.steps, step_end_times(deck)):
@@ -148,8 +149,7 @@ def summary(deck, laws, pairs, dat: str, sta: str, log: str, seconds: float, *, 
         "newton_iterations": int(sum(r[3] for r in increments)), "cutbacks": int(sum(r[2] - 1 for r in increments)),
         "elements": "ccx: the deck's elements; interface: " + ", ".join(sorted({p.user_type for p in pairs})),
         "deck": deck.path, "interface_area": areas.tolist(),
-        "interface_axes": {"interaction": [p.interaction for p in pairs
-                                           for _ in range(p.ids.size * USER_TYPES[p.face].n_points)],
+        "interface_axes": {"interaction": [p.interaction for n, p in zip(counts, pairs) for _ in range(n)],
                            "e_1": frames[:, 0].tolist(), "e_2": frames[:, 1].tolist(), "n": frames[:, 2].tolist(),
                            "definition": "e_1: the law's lay_direction projected onto the master face; "
                                          "e_2 = n x e_1; n: the master face's normal, towards the slave"},

@@ -64,17 +64,16 @@ def _progress(quiet: bool):
 
 
 def _build(args) -> dict[str, Any]:
-    from ..ccx.build import CCX_VERSION, BuildError, build_ccx, find_build
+    from ..ccx.build import CCX_VERSION, BuildError, build_ccx
 
     if args.jobs is not None and not 1 <= args.jobs <= 256:
         raise CLIError(f"--jobs {args.jobs}: must lie in 1 ... 256")
-    cached = not args.force and find_build() is not None
     try:
         build = build_ccx(source=args.source, jobs=args.jobs, force=args.force, progress=_progress(args.quiet))
     except BuildError as exc:
         raise CLIError(str(exc)) from None
     return {"ccx": CCX_VERSION, "executable": str(build.executable), "folder": str(build.folder),
-            "key": build.info.get("key"), "cached": cached, "build": build.info}
+            "key": build.info.get("key"), "cached": build.cached, "build": build.info}
 
 
 def _run(args) -> dict[str, Any]:
