@@ -1,23 +1,32 @@
-"""The three cost ratios of issue 33 in one process, both production routes of
-contact.elastoplastic ("tau": per separation; "table": one summit table per material,
-integrals.summit_table), with the table's agreement with the τ-route.
+"""Issue 33's three cost ratios of the elasto-plastic law for its default route ("auto"), in one
+process with the elastic model, and the routes behind it.
 
-    nice .venv/bin/python benchmarks/ep_cost.py [--accuracy plot] [--repeat 7] [--grid 5] [--m00 2] [--psi 50]
+    nice -n 10 .venv/bin/python benchmarks/ep_cost.py [--accuracy plot] [--repeat 7] [--m00 2] [--psi 50] [--grid 5]
 
-Table 1 surface, ψ = 1, E* = 1.14e5. Per separation (s = 1): the elastic model, the τ-route,
-the table route warm (table cached) and cold (a new material: the build included, as a first
-call sees it). A 200-point curve (s ∈ [0, 2]) warm and cold, in single separations of the same
-route, and the cold curve's cost per separation against the elastic one (the build amortised
-over the curve). The sweep: real sub-grids of benchmarks/sweep_throughput.py (400 separations,
-contact.sweep.run_sweep, elastic model off): the τ-route on m00 × ψ = grid × grid, extrapolated
-linearly in the number of (m00, ψ) to 50 × 50 × 400 = 10⁶ points (its cost is per curve); the
-table route on --m00 values of m00 × the full ψ axis (--psi 50 values), extrapolated linearly
-in m00 (its cost is one shared build per surface, summit_table.build_tables, plus a cheap
-convolution per curve: a sub-grid with fewer ψ would overstate it). Wall and CPU time (the CPU
-time of the process, all threads: on an idle 2-core machine the wall time is about CPU/2 to
-CPU). The shared build's agreement with the τ-route over ψ = 0.05 … 50 (five materials, one
-build). Medians of repeats; the load average is printed (the machine's load inflates every
-wall time alike).
+Table 1 surface, ψ = 1, E* = 1.14e5, preset "plot". route="auto" (contact.elastoplastic, the
+default of elastoplastic_contact, elastoplastic_contact_many and SweepSpec) takes the summit
+table when the material's table is cached, or when a call's τ-route cost reaches the table's
+build, else the τ = r t route. Measured, medians of --repeat calls:
+
+* per separation (s = 1): the elastic model; auto **warm** (the material's table cached, as
+  every call after the first big one of a process sees it) and **cold** (cache cleared before
+  each call: a lone separation stays on τ, no build);
+* a 200-point curve (s ∈ [0, 2]) warm and cold, in single separations of the same state
+  (issue 33: "a 200-point curve = N single separations");
+* the sweep: a real sub-grid of benchmarks/sweep_throughput.py (--m00 values of m00 × --psi
+  values of ψ × 400 separations, contact.sweep.run_sweep with its default route, elastic
+  model off, cache cleared first), extrapolated linearly in m00 to 50 × 50 × 400 = 10⁶ points
+  (auto takes the table route there: one shared summit-table build per m00, so a sub-grid
+  with fewer ψ would overstate the cost); and, for comparison, the τ route on --grid × --grid
+  (its cost is per curve: extrapolated in the number of (m00, ψ); --grid 0 skips it);
+* behind the rule: the τ route's single separation and the cold build of one table
+  (route="table", cache cleared), whose ratio is the break-even the rule uses
+  (contact.elastoplastic.BUILD_IN_TAU_SEPARATIONS), and the routes' agreement.
+
+Wall and CPU time (the process's CPU, all threads); the load average before and after (the
+machine's load inflates every wall time alike). The summary's last lines state the ratios
+against the goals (≤ 12× elastic per separation, ≤ 20 separations per 200-point curve,
+≤ 60 s for 10⁶ sweep points).
 """
 
 from __future__ import annotations
@@ -42,6 +51,7 @@ from roughcontact.contact import elastoplastic as ep  # noqa: E402
 
 SURFACE = SpectralMoments(0.0625, 8e-5, 8e-4, 1.04e-6, 1.04e-4)
 E = 1.14e5
+GOALS = {"single": 12.0, "curve": 20.0, "sweep": 60.0}
 
 
 def _median(fn, repeat, before=None):
@@ -69,66 +79,84 @@ def _max_rel(a, b) -> float:
     return worst
 
 
-def _sweep_seconds(n_m00, n_psi, accuracy, route):
-    """(wall, CPU, wall extrapolated to 50 × 50 × 400, CPU extrapolated) of a real sub-grid."""
+def _sweep_seconds(n_m00, n_psi, accuracy, route, extrapolate_psi):
+    """(wall, CPU, wall extrapolated to 50 × 50 × 400, CPU extrapolated, routes taken)."""
     sp = sweep_throughput.spec(n_m00, n_psi, 400, accuracy, route)
-    sweep.run_sweep(sweep_throughput.spec(1, ep.SHARED_MIN, 2, accuracy, route))  # kernels loaded (shared build too)
-    ep._TABLES.clear()
+    sweep.run_sweep(sweep_throughput.spec(1, ep.SHARED_MIN, 2, accuracy, "table"))  # the shared build's kernel loaded
+    ep.clear_table_cache()
     t0, c0 = time.perf_counter(), time.process_time()
-    sweep.run_sweep(sp)
+    ds = sweep.run_sweep(sp)
     wall, cpu = time.perf_counter() - t0, time.process_time() - c0
-    scale = (50 * 50) / (n_m00 * n_psi)
-    return wall, cpu, wall * scale, cpu * scale
+    scale = 50 / n_m00 * (50 / n_psi if extrapolate_psi else 1.0)
+    return wall, cpu, wall * scale, cpu * scale, ds.attrs["route_used"]
 
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--accuracy", default="plot")
     ap.add_argument("--repeat", type=int, default=7)
-    ap.add_argument("--grid", type=int, default=5, help="τ-route sweep sub-grid: grid × grid (m00, ψ), 400 separations")
-    ap.add_argument("--m00", type=int, default=2, help="table-route sweep sub-grid: m00 values (× --psi ψ values)")
-    ap.add_argument("--psi", type=int, default=50, help="table-route sweep sub-grid: ψ values (50: the full axis)")
+    ap.add_argument("--m00", type=int, default=2, help="default-route sweep sub-grid: m00 values (x --psi values)")
+    ap.add_argument("--psi", type=int, default=50, help="default-route sweep sub-grid: psi values (50: the full axis)")
+    ap.add_argument("--grid", type=int, default=5, help="tau-route sweep sub-grid grid x grid (0: skip)")
     args = ap.parse_args(argv)
     acc, rep = args.accuracy, args.repeat
-    print(f"load average before: {os.getloadavg()}")
+    load0 = os.getloadavg()
+    print(f"load average before: {load0[0]:.2f} {load0[1]:.2f} {load0[2]:.2f}  (preset {acc!r}, Table 1, psi = 1)")
     mat = AsperityMaterial(E, yield_strength_for_plasticity_index(1.0, SURFACE, E))
-    curve = np.linspace(0.0, 2.0, 200)
+    one, curve = [1.0], np.linspace(0.0, 2.0, 200)
     kw = dict(accuracy=acc, validity="off")
-    el = _median(lambda: elastic_contact(SURFACE, [1.0], E, accuracy=acc), rep)
-    tau1 = _median(lambda: ep.elastoplastic_contact(SURFACE, [1.0], mat, **kw), rep)
-    tauc = _median(lambda: ep.elastoplastic_contact(SURFACE, curve, mat, **kw), max(3, rep // 2))
-    clear = ep._TABLES.clear
-    cold1 = _median(lambda: ep.elastoplastic_contact(SURFACE, [1.0], mat, route="table", **kw), max(3, rep // 2), clear)
-    coldc = _median(lambda: ep.elastoplastic_contact(SURFACE, curve, mat, route="table", **kw), max(3, rep // 2), clear)
-    tab1 = _median(lambda: ep.elastoplastic_contact(SURFACE, [1.0], mat, route="table", **kw), rep)
-    tabc = _median(lambda: ep.elastoplastic_contact(SURFACE, curve, mat, route="table", **kw), rep)
+    clear = ep.clear_table_cache
+
+    def auto(s):
+        return ep.elastoplastic_contact(SURFACE, s, mat, **kw)
+
+    el = _median(lambda: elastic_contact(SURFACE, one, E, accuracy=acc), rep)
+    # cold: no table cached (each call as a process's first for this material)
+    clear()
+    cold_routes = (auto(one).route, auto(curve).route)
+    cold1 = _median(lambda: auto(one), rep, clear)
+    coldc = _median(lambda: auto(curve), max(3, rep // 2), clear)
+    # warm: the material's table cached (here by one route="table" call over the curve's range)
+    clear()
+    ep.elastoplastic_contact(SURFACE, curve, mat, route="table", **kw)
+    warm_routes = (auto(one).route, auto(curve).route)
+    warm1 = _median(lambda: auto(one), rep)
+    warmc = _median(lambda: auto(curve), rep)
     table = next(iter(ep._TABLES.values()))
+    # behind the rule: the τ route and the cold build
+    tau1 = _median(lambda: ep.elastoplastic_contact(SURFACE, one, mat, route="tau", **kw), rep)
+    build = _median(lambda: ep.elastoplastic_contact(SURFACE, one, mat, route="table", **kw), max(3, rep // 2), clear)
     agree = _max_rel(ep.elastoplastic_contact(SURFACE, curve, mat, route="table", **kw),
-                     ep.elastoplastic_contact(SURFACE, curve, mat, interpolate_s=False, **kw))
-    print(f"elastic single separation               {el * 1e6:9.0f} us")
-    print(f"EP tau route:   single {tau1 * 1e6:8.0f} us ({tau1 / el:5.1f}x elastic); curve of 200 "
-          f"{tauc * 1e3:7.1f} ms = {tauc / tau1:5.1f} singles = {tauc / 200 / el:5.1f}x elastic per separation")
-    print(f"EP table route: warm single {tab1 * 1e6:.0f} us ({tab1 / el:.1f}x elastic); warm curve of 200 "
-          f"{tabc * 1e3:.2f} ms = {tabc / tab1:.1f} warm singles")
-    print(f"                cold single (build incl.) {cold1 * 1e3:.0f} ms ({cold1 / el:.0f}x elastic); cold curve of 200 "
-          f"{coldc * 1e3:.0f} ms = {coldc / cold1:.2f} cold singles = {coldc / 200 / el:.1f}x elastic per separation")
-    print(f"                table: {table.evaluations} rho-evaluations, {table.y.size} convolution nodes, "
-          f"interpolation bound {table.interp_error:.1e}, theta-error estimate {table.theta_error:.1e}; "
-          f"table vs tau route (no s-interpolation) over the curve: max rel. {agree:.1e} (bound 1e-8)")
-    psis = (0.05, 0.5, 2.0, 10.0, 50.0)
-    mats = [AsperityMaterial(E, yield_strength_for_plasticity_index(p, SURFACE, E)) for p in psis]
-    t_shared = _median(lambda: ep.elastoplastic_contact_many(SURFACE, curve, mats, route="table", **kw), 3, clear)
-    shared = ep.elastoplastic_contact_many(SURFACE, curve, mats, route="table", **kw)
-    tau_many = ep.elastoplastic_contact_many(SURFACE, curve, mats, interpolate_s=False, **kw)
-    agree_many = max(_max_rel(a, b) for a, b in zip(shared, tau_many))
-    print(f"                shared build: {len(psis)} materials (psi {psis[0]} ... {psis[-1]}) x 200 separations cold "
-          f"{t_shared:.2f} s; vs tau route: max rel. {agree_many:.1e} (bound 1e-8)")
-    for route, (nm, npsi) in (("tau", (args.grid, args.grid)), ("table", (args.m00, args.psi))):
-        wall, cpu, full, full_cpu = _sweep_seconds(nm, npsi, acc, route)
-        print(f"sweep ({route:5s} route) {nm}x{npsi}x400 = {nm * npsi * 400} points: wall {wall:.1f} s, CPU {cpu:.1f} s "
-              f"-> 10^6 points extrapolated: wall {full:.0f} s, CPU {full_cpu:.0f} s (goal 60 s wall; "
-              f"load {os.getloadavg()[0]:.1f})")
-    print(f"load average after: {os.getloadavg()}")
+                     ep.elastoplastic_contact(SURFACE, curve, mat, route="tau", interpolate_s=False, **kw))
+    print(f"elastic, one separation                       {el * 1e6:8.0f} us")
+    print(f"EP auto, one separation     warm ({warm_routes[0]:5s}) {warm1 * 1e6:8.0f} us = {warm1 / el:6.2f}x elastic")
+    print(f"                            cold ({cold_routes[0]:5s}) {cold1 * 1e6:8.0f} us = {cold1 / el:6.2f}x elastic")
+    print(f"EP auto, 200-point curve    warm ({warm_routes[1]:5s}) {warmc * 1e3:8.2f} ms = {warmc / warm1:6.1f} warm separations")
+    print(f"                            cold ({cold_routes[1]:5s}) {coldc * 1e3:8.2f} ms = {coldc / cold1:6.1f} cold separations")
+    print(f"behind the rule: tau route one separation {tau1 * 1e3:.2f} ms; cold table build (route='table', one "
+          f"separation) {build * 1e3:.0f} ms = {build / tau1:.0f} tau separations (the rule assumes "
+          f"{ep.BUILD_IN_TAU_SEPARATIONS.get(acc, ep.BUILD_IN_TAU_SEPARATIONS_OTHER):.0f}); table: "
+          f"{table.evaluations} rho-evaluations, {table.y.size} convolution nodes, {table.nbytes / 1024:.0f} kB")
+    print(f"accuracy: table vs tau route (no s-interpolation) over the curve: max rel. {agree:.1e} (bound 1e-8 each)")
+    sw = _sweep_seconds(args.m00, args.psi, acc, "auto", extrapolate_psi=False)
+    print(f"sweep, default route ({sw[4]}) {args.m00}x{args.psi}x400 = {args.m00 * args.psi * 400} points: wall "
+          f"{sw[0]:.1f} s, CPU {sw[1]:.1f} s -> 10^6 points: wall {sw[2]:.0f} s, CPU {sw[3]:.0f} s")
+    if args.grid > 0:
+        st = _sweep_seconds(args.grid, args.grid, acc, "tau", extrapolate_psi=True)
+        print(f"sweep, tau route (before) {args.grid}x{args.grid}x400: wall {st[0]:.1f} s -> 10^6 points: "
+              f"wall {st[2]:.0f} s, CPU {st[3]:.0f} s")
+    load1 = os.getloadavg()
+    print("-- issue 33, default route 'auto', one process --")
+    print(f"per separation <= {GOALS['single']:.0f}x elastic:  warm {warm1 / el:.2f}x "
+          f"({'met' if warm1 / el <= GOALS['single'] else 'NOT met'}); cold {cold1 / el:.1f}x "
+          f"({'met' if cold1 / el <= GOALS['single'] else 'NOT met'}: a lone separation without a table runs the tau route)")
+    print(f"200-point curve <= {GOALS['curve']:.0f} separations: warm {warmc / warm1:.1f} "
+          f"({'met' if warmc / warm1 <= GOALS['curve'] else 'NOT met'}); cold {coldc / cold1:.1f} "
+          f"({'met' if coldc / cold1 <= GOALS['curve'] else 'NOT met'}: tau route with s-interpolation, no build)")
+    print(f"10^6 sweep points <= {GOALS['sweep']:.0f} s: {sw[2]:.0f} s wall ({sw[3]:.0f} s CPU) "
+          f"({'met' if sw[2] <= GOALS['sweep'] else 'NOT met'})")
+    print(f"load average before {load0[0]:.2f}, after {load1[0]:.2f} {load1[1]:.2f} {load1[2]:.2f} (2 cores; "
+          "wall times are upper bounds on a loaded machine)")
     return 0
 
 

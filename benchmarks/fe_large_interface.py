@@ -2,7 +2,7 @@
 ``roughcontact fe run --solver S`` for each linear strategy of roughcontact.fe.solver.
 
     .venv/bin/python benchmarks/fe_large_interface.py [--sizes 16x2x4 24x3x5] [--solvers ...]
-        [--friction] [--timeout 900] [--out results/benchmarks]
+        [--friction] [--timeout 900] [--ccx] [--ccx-timeout 1800] [--out results/benchmarks]
 
 The deck (CalculiX/Abaqus syntax, C3D20, mm, N): a steel plate 60 × 60 × 10 mm on a cast-iron
 base 60 × 60 × 20 mm (the plate's bottom on the base's top over the whole face, node for node);
@@ -15,8 +15,11 @@ its third x ≥ 40 mm (an eccentric load). The interface: the statistical law of
 benchmarks/block_on_base.py (elastic, seated at 1e-3 N/mm²), frictionless or with ``--friction``
 Coulomb friction (μ = 0.2, k_T/k_N = 0.7: an unsymmetric tangent where points slip). 10 equal
 increments. Each run is a child process: wall and CPU time and peak RSS from os.wait4, the
-load average before and after (benchmarks/fe_block_on_base.py ``measure``). Writes
-fe_large_interface.json and .md under --out.
+load average before and after (benchmarks/fe_block_on_base.py ``measure``). With ``--ccx`` each
+size also runs in CalculiX with the same law (``roughcontact ccx run``, issue 30: the law as a
+user element; 2 threads, as the engine's PARDISO), stopped after --ccx-timeout seconds; skipped
+with a note when ``roughcontact ccx build`` has not been run. Writes fe_large_interface.json and
+.md under --out.
 """
 
 from __future__ import annotations
@@ -124,13 +127,15 @@ def law_yaml(friction: bool) -> str:
 
 
 def run(size: str, solver: str, friction: bool, timeout: float, workdir: Path) -> dict:
+    """One run of the deck of ``size``: ``solver`` a linear strategy of ``fe run``, or "ccx"."""
     n, ny, a, b = parse_size(size)
     deck, law = workdir / f"plate_{size}.inp", workdir / ("LAW_friction.yaml" if friction else "LAW.yaml")
     deck.write_text(plate_on_base_deck(n, a, b, ny))
     law.write_text(law_yaml(friction))
     exe = shutil.which("roughcontact") or str(Path(sys.executable).with_name("roughcontact"))
-    row = measure([exe, "fe", "run", str(deck), "--interface", str(law), "--solver", solver, "--json", "--quiet"],
-                  workdir, timeout)
+    how = (["ccx", "run", str(deck), "--interface", str(law), "--threads", "2", "--timeout", f"{timeout:g}"]
+           if solver == "ccx" else ["fe", "run", str(deck), "--interface", str(law), "--solver", solver])
+    row = measure([exe, *how, "--json", "--quiet"], workdir, timeout + 60.0)
     out = {"size": size, "solver": solver, "friction": friction, **{k: row[k] for k in (
         "exit", "timeout", "wall_s", "cpu_s", "peak_rss_mb", "load_before", "load_after")}}
     if row["exit"] == 0:
@@ -146,19 +151,31 @@ def run(size: str, solver: str, friction: bool, timeout: float, workdir: Path) -
     return out
 
 
+def _ccx_built() -> bool:
+    """Whether `roughcontact ccx build` has made the ccx with the law (else a note, no ccx rows)."""
+    from roughcontact.ccx.build import find_build
+
+    if find_build() is None:
+        print("ccx rows skipped: run `roughcontact ccx build` first (docs/ccx.md)", file=sys.stderr)
+        return False
+    return True
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--sizes", nargs="+", default=["16x2x4"])
-    ap.add_argument("--solvers", nargs="+", default=list(SOLVERS))
+    ap.add_argument("--solvers", nargs="*", default=list(SOLVERS), help="linear strategies of fe run (none: ccx only)")
     ap.add_argument("--friction", action="store_true")
     ap.add_argument("--timeout", type=float, default=900.0)
+    ap.add_argument("--ccx", action="store_true", help="also run each size in CalculiX with the law (ccx run)")
+    ap.add_argument("--ccx-timeout", type=float, default=1800.0)
     ap.add_argument("--out", type=Path, default=Path("results/benchmarks"))
     args = ap.parse_args(argv)
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         for size in args.sizes:
-            for solver in args.solvers:
-                row = run(size, solver, args.friction, args.timeout, Path(tmp))
+            for solver in [*args.solvers, *(["ccx"] if args.ccx and _ccx_built() else [])]:
+                row = run(size, solver, args.friction, args.ccx_timeout if solver == "ccx" else args.timeout, Path(tmp))
                 rows.append(row)
                 print(json.dumps(row), flush=True)
     args.out.mkdir(parents=True, exist_ok=True)

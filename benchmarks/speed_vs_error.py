@@ -9,7 +9,11 @@ low-bandwidth surface (α ≈ 2.2, μ = 0.09), an extreme-anisotropy surface (m0
 at a heavy and a light load (ψ = 1 for the elasto-plastic model) — it times, per separation:
 
 * the production integrator at several accuracy settings (single-separation calls, serial;
-  plus a batch of 64 separations split over the threads);
+  plus a batch of 64 separations split over the threads) — elasto-plastic: the τ = r t route
+  (route="tau", what the default route "auto" takes for a single separation without a cached
+  table), and the summit-table route (route="table", what "auto" takes once the table is
+  cached: rows "table route <preset> (warm)", family "production (table route)", the cold
+  call that builds the table in the row's note);
 * the paper's Gauss–Legendre product rule in (ω1, ω4, ω6), n = 50 as printed and other n
   (baselines.product_rule, truncation documented there);
 * scipy: a plain tplquad over the infinite ranges (once per quantity, full mode; cached) and,
@@ -126,7 +130,8 @@ def _ep_methods(surface, s, quick):
     mat = refs.material_for(PSI, surface)
     m = {}
     for name, acc in EP_SETTINGS.items():
-        m[name] = ("production", lambda acc=acc: refs.first_values(elastoplastic_contact(surface, [s], mat, accuracy=acc)))
+        m[name] = ("production", lambda acc=acc: refs.first_values(elastoplastic_contact(surface, [s], mat, accuracy=acc,
+                                                                                         route="tau")))
     for n in ((16, 50) if quick else (16, 32, 50, 100)):
         m[f"GL-{n}³" + (" (paper)" if n == 50 else "")] = (
             "GL product rule", lambda n=n: baselines.product_rule(surface, s, n=n, kind="elastoplastic", material=mat))
@@ -159,7 +164,7 @@ def _batch_rows(model, point, surface, s, ref, rows):
             fn = lambda acc=acc: elastic_contact(surface, svals, 1.0, accuracy=acc)  # noqa: E731
         else:
             mat = refs.material_for(PSI, surface)
-            fn = lambda acc=acc, mat=mat: elastoplastic_contact(surface, svals, mat, accuracy=acc)  # noqa: E731
+            fn = lambda acc=acc, mat=mat: elastoplastic_contact(surface, svals, mat, accuracy=acc, route="tau")  # noqa: E731
         fn()
         row = Row(model, point, name, "production (batch)")
         for _ in range(3):
@@ -170,6 +175,31 @@ def _batch_rows(model, point, surface, s, ref, rows):
         rows.append(row)
     if model == "elastoplastic":
         _curve_row(point, surface, s, ref, rows)
+        _table_route_rows(point, surface, s, ref, rows)
+
+
+def _table_route_rows(point, surface, s, ref, rows, repeat=7):
+    """route="table" (integrals.summit_table) at the presets "plot" and "table": single-separation
+    calls with the material's table cached (warm: what route="auto" takes once a table exists),
+    and in the note the cold call that builds it (cache cleared first)."""
+    from roughcontact.contact.elastoplastic import _TABLES, clear_table_cache
+
+    mat = refs.material_for(PSI, surface)
+    for acc in ("plot", "table"):
+        fn = lambda acc=acc: elastoplastic_contact(surface, [s], mat, accuracy=acc, route="table")  # noqa: E731
+        clear_table_cache()
+        _, cold = _timed(fn)
+        table = next(iter(_TABLES.values()))
+        row = Row("elastoplastic", point, f"table route {acc} (warm)", "production (table route)",
+                  note=f"table cached; the cold call (the build, {table.evaluations} rho-evaluations) took "
+                       f"{cold * 1e3:.0f} ms")
+        for _ in range(repeat):
+            c, dt = _timed(fn)
+            row.seconds.append(dt)
+        row.values = refs.first_values(c)
+        row.errors = _relative_errors(row.values, ref)
+        rows.append(row)
+    clear_table_cache()
 
 
 def _curve_row(point, surface, s, ref, rows, n=201):
@@ -179,7 +209,7 @@ def _curve_row(point, surface, s, ref, rows, n=201):
     mat = refs.material_for(PSI, surface)
     svals = np.linspace(s - 1.0, s + 1.0, n)
     svals[n // 2] = s
-    fn = lambda: elastoplastic_contact(surface, svals, mat, accuracy="plot")  # noqa: E731
+    fn = lambda: elastoplastic_contact(surface, svals, mat, accuracy="plot", route="tau")  # noqa: E731
     c = fn()
     row = Row("elastoplastic", point, f"prod plot (curve of {n}, s-interpolated)", "production (curve)",
               note=f"{c.interpolation.nodes} model evaluations, measured interpolation error "

@@ -42,3 +42,16 @@ def hide_programs(tmp_path_factory):
         return env_without(programs, tmp_path_factory.mktemp("hidden-path"))
 
     return make
+
+
+@pytest.fixture(autouse=True)
+def _no_cached_summit_tables():
+    """Each test starts without cached summit tables: route="auto" (contact.elastoplastic, the
+    default) takes the table route where a table of the same (surface, Hertz option, accuracy,
+    material) is cached in the process, so a test's route — and with it attributes such as
+    ``interpolation`` (the τ route's s-interpolation) — would depend on which tests ran before
+    it. Values do not: both routes are within the preset's bound."""
+    from roughcontact.contact.elastoplastic import clear_table_cache
+
+    clear_table_cache()
+    yield

@@ -40,6 +40,11 @@ ln r) and ln G_k interpolated; each θ-node then integrates its regime pieces in
 (Gauss–Legendre) with the law evaluated there only. θ: nested tanh-sinh levels, added until the
 estimated θ-error is below the preset's tolerance (integrals.rules.ELASTOPLASTIC_PRESETS).
 Separations run in parallel; a single one splits its grid and θ-nodes over the threads.
+That is ``route="tau"``. ``route="table"`` (integrals.summit_table, issue 33): per material one
+table of ρ(y), y = g r − t, built once (~70 τ-route separations at "plot") and cached; every
+separation is then a Gaussian convolution over it (~40–60 µs). ``route="auto"`` (the default)
+takes the table where it is cached or where the call's τ-route cost reaches the build
+(:func:`_auto_tables`, measured break-even in the constants below), else τ.
 ``method="reference"``: the slow twin
 (:func:`roughcontact.integrals.reference_elastoplastic.reference_integrals`) — scipy
 ``integrate.cubature`` (adaptive Gauss–Kronrod 21) over θ (polynomially mapped to flatten
@@ -52,6 +57,7 @@ from __future__ import annotations
 
 import functools
 import math
+from collections import OrderedDict
 from dataclasses import dataclass, field
 from typing import ClassVar, Mapping
 
@@ -69,20 +75,45 @@ from .validity import VALIDITY_MODES, check_bandwidth, check_validity
 from .units import attrs, check_units
 from .s_interpolation import SInterpolation, interpolated_columns_many
 
-__all__ = ["ElastoPlasticCurves", "elastoplastic_contact", "elastoplastic_contact_many"]
+__all__ = ["ElastoPlasticCurves", "elastoplastic_contact", "elastoplastic_contact_many", "clear_table_cache",
+           "table_cache_bytes"]
 
 HERTZ = ("exact", "paper")
 METHODS = ("production", "reference")
-#: production routes: "tau" (the τ = r t kernel, per separation) and "table" (one summit table
+#: production routes: "auto" (the default: "table" or "tau" per material by the rule of
+#: :func:`_auto_tables`), "tau" (the τ = r t kernel, per separation) and "table" (one summit table
 #: per material, integrals.summit_table; each separation a Gaussian convolution over it; the
 #: materials of one call built together by the shared build, summit_table.build_tables)
-ROUTES = ("tau", "table")
-_TABLES: dict = {}
-_TABLES_MAX = 256
+ROUTES = ("auto", "tau", "table")
 #: materials built together by the shared build (summit_table.build_tables) from this many on:
 #: measured on Table 1 ("plot", load ~13), one shared build costs ~3 per-material builds for 1
 #: material, ~4 for 5, ~8 for 50 (the y-panels of more materials refine more)
 SHARED_MIN = 4
+#: the in-process table cache (least recently used first): bounded by the tables' bytes
+#: (SummitTable.nbytes; a Table 1 table at "plot" is 19 kB (238 convolution nodes), so ~3500
+#: tables: a 50 × 50 sweep's 2500 fit; a table larger than the bound alone is used by its call
+#: and not kept)
+TABLE_CACHE_BYTES = 64 * 2**20
+_TABLES: OrderedDict = OrderedDict()
+
+# The rule of route="auto" (_auto_tables), in units of one τ-route separation of one material
+# (measured with benchmarks/ep_cost.py's set-up, which prints these ratios again: Table 1, ψ = 0.05,
+# 1, 50, s = 1, medians, load average 1.8–2.8 on 2 shared cores, 2026-11-28):
+#   τ route, one material, n separations: 1.4–1.8 ms each at "plot" (3.4–4.4 ms at "table");
+#     with interpolate_s and n ≥ 48 the curve costs 33 evaluations whatever n (56 ms "plot",
+#     130 ms "table": contact.s_interpolation verified on its 32-interval grid);
+#   τ route, k materials per separation: 1, 1.6, 3.8, 4.6, 8.5, 31 single-material costs for
+#     k = 1, 2, 4, 8, 16, 50 (the hyperbola integrals shared): ≈ 0.4 + 0.6 k;
+#   the cold build of one material's table: 59, 99, 125 ms at "plot" = 62, 70, 59 τ separations
+#     (ψ = 0.05, 1, 50); 173, 352, 311 ms at "table" = 57, 88, 62;
+#   the shared build of k ≥ SHARED_MIN materials: 266, 278, 387, 525 ms for k = 4, 8, 16, 50 at
+#     "plot" = 2.7, 2.8, 3.9, 5.3 single-material builds: ≈ 2.5 + 0.06 k.
+#: a cold single-material table build, in τ-route separations of that material
+BUILD_IN_TAU_SEPARATIONS = {"plot": 70.0, "table": 80.0}
+BUILD_IN_TAU_SEPARATIONS_OTHER = 80.0
+#: model evaluations of a τ-route curve built by s-interpolation (n ≥ S_INTERPOLATION_MIN)
+S_INTERPOLATION_EVALUATIONS = 33
+S_INTERPOLATION_MIN = 48
 _PARTS = ("elastic", "elastoplastic", "plastic")
 
 
@@ -129,6 +160,8 @@ class ElastoPlasticCurves:
     units: dict = field(default_factory=_units)
     #: how the curve was obtained over s (contact.s_interpolation; None: direct)
     interpolation: SInterpolation | None = None
+    #: the production route taken ("tau" | "table"; None: method "reference")
+    route: str | None = None
 
     @property
     def mean_real_pressure(self) -> np.ndarray:
@@ -190,6 +223,8 @@ class ElastoPlasticCurves:
         )
         if self.interpolation is not None:
             ds.attrs.update(self.interpolation.as_attrs())
+        if self.route is not None:
+            ds.attrs["route"] = self.route
         return ds
 
 
@@ -275,14 +310,43 @@ def _production(surface, l_values, material, hertz, accuracy, return_info=False)
     return (out[:, 0], info[:, 0]) if return_info else out[:, 0]
 
 
+def _cached_table(key, lo: float, hi: float):
+    """The cached table of ``key`` if it covers separations l ∈ [lo, hi] (marked recently used)."""
+    table = _TABLES.get(key)
+    if table is None or not table.covers(lo, hi):
+        return None
+    _TABLES.move_to_end(key)
+    return table
+
+
+def _store_table(key, table) -> None:
+    """Keep ``table``; the least recently used tables leave while the cache exceeds TABLE_CACHE_BYTES."""
+    _TABLES.pop(key, None)
+    _TABLES[key] = table
+    total = sum(t.nbytes for t in _TABLES.values())
+    while total > TABLE_CACHE_BYTES and _TABLES:
+        total -= _TABLES.popitem(last=False)[1].nbytes
+
+
+def clear_table_cache() -> None:
+    """Forget every cached summit table (route "table"/"auto"): the next call builds afresh."""
+    _TABLES.clear()
+
+
+def table_cache_bytes() -> int:
+    """Bytes held by the in-process summit-table cache (at most TABLE_CACHE_BYTES)."""
+    return int(sum(t.nbytes for t in _TABLES.values()))
+
+
 def _table_many(surface, l_values, materials, hertz, accuracy):
     """:func:`_production_many` by the summit table (integrals.summit_table): one table per
-    (surface, hertz, accuracy, material), cached and rebuilt over a wider range when the
-    separations leave it. The materials without a table are built together when there are
-    SHARED_MIN of them and their t_c1 are multiples of one another (eq. (65): every material
-    differing in Y, E*, H, c_h, ω_p/ω_c, K_v), from one set of material-free densities
-    (summit_table.build_tables, "the shared build"); a lone material by build_table, and so
-    is every material when the shared build cannot meet its tolerance (ArithmeticError)."""
+    (surface, hertz, accuracy, material), cached (least recently used out beyond
+    TABLE_CACHE_BYTES) and rebuilt over a wider range when the separations leave it. The
+    materials without a table are built together when there are SHARED_MIN of them and their
+    t_c1 are multiples of one another (eq. (65): every material differing in Y, E*, H, c_h,
+    ω_p/ω_c, K_v), from one set of material-free densities (summit_table.build_tables, "the
+    shared build"); a lone material by build_table, and so is every material when the shared
+    build cannot meet its tolerance (ArithmeticError)."""
     nodes = _theta_geometry(surface, hertz, accuracy)[0]
     sigma = math.sqrt(surface.m00 * surface.mu)
     l_values = np.asarray(l_values, dtype=float)
@@ -291,12 +355,14 @@ def _table_many(surface, l_values, materials, hertz, accuracy):
     tables = {}
     missing = []
     for m in dict.fromkeys(materials):
-        table = _TABLES.get((surface, hertz, accuracy, m))
-        if table is not None and table.covers(lo, hi):
+        key = (surface, hertz, accuracy, m)
+        table = _cached_table(key, lo, hi)
+        if table is not None:
             tables[m] = table
         else:
-            if table is not None:
-                lo, hi = min(lo, table.y_range[0] + 11.0), max(hi, table.y_range[1] - 11.0)
+            old = _TABLES.get(key)
+            if old is not None:  # widened: the old range and the new one
+                lo, hi = min(lo, old.y_range[0] + 11.0), max(hi, old.y_range[1] - 11.0)
             missing.append(m)
     if missing:
         tc1s = [_tc1(surface, hertz, accuracy, m) for m in missing]
@@ -310,16 +376,55 @@ def _table_many(surface, l_values, materials, hertz, accuracy):
             built = [build_table(nodes, t, sigma, _material_constants(m), accuracy, lo, hi)
                      for m, t in zip(missing, tc1s)]
         for m, table in zip(missing, built):
-            key = (surface, hertz, accuracy, m)
-            _TABLES.pop(key, None)
-            if len(_TABLES) >= _TABLES_MAX:
-                _TABLES.pop(next(iter(_TABLES)))
-            _TABLES[key] = tables[m] = table
+            tables[m] = table
+            _store_table((surface, hertz, accuracy, m), table)
     for k, m in enumerate(materials):
         out[:, k] = tables[m].columns(l_values)
     out *= surface.summit_density
     out[..., 6] = out[..., 6] + out[..., 7]
     return out
+
+
+def _tau_evaluations(n_separations: int, interpolate_s: bool) -> int:
+    """Model evaluations of a τ-route curve of n distinct separations (per material)."""
+    if interpolate_s and n_separations >= S_INTERPOLATION_MIN:
+        return min(n_separations, S_INTERPOLATION_EVALUATIONS)
+    return n_separations
+
+
+def _build_cost(n_materials: int, accuracy) -> float:
+    """The cold build of ``n_materials`` tables in τ-route separations of one material: lone
+    builds below SHARED_MIN, else the shared build ≈ (2.5 + 0.06 k) lone builds (measured, above)."""
+    one = BUILD_IN_TAU_SEPARATIONS.get(accuracy, BUILD_IN_TAU_SEPARATIONS_OTHER) if isinstance(accuracy, str) \
+        else BUILD_IN_TAU_SEPARATIONS_OTHER
+    return one * (n_materials if n_materials < SHARED_MIN else 2.5 + 0.06 * n_materials)
+
+
+def _tau_cost(n_separations: int, n_materials: int, interpolate_s: bool) -> float:
+    """The τ route's cost of a call in τ-route separations of one material: evaluations × the
+    k-material cost ≈ 0.4 + 0.6 k (k = 1: 1; measured, above)."""
+    return _tau_evaluations(n_separations, interpolate_s) * max(1.0, 0.4 + 0.6 * n_materials)
+
+
+def _auto_tables(surface, s_arr, materials, hertz, accuracy, interpolate_s) -> np.ndarray:
+    """route="auto": per material, True where the table route is taken. A material whose table
+    is cached and covers the call's separations takes it; the materials without one all take it
+    when the call's τ-route cost (its distinct separations, after s-interpolation, times its
+    materials) is at least the cold build of their tables (:func:`_tau_cost` ≥
+    :func:`_build_cost`), else the τ route. Measured break-even ("plot", Table 1): one material
+    from ~70 separations evaluated (a curve without s-interpolation; with it a curve costs 33
+    evaluations, so one curve of one material stays on τ and pays no build); a sweep's surface
+    with ≥ 11 materials of one s-interpolated curve (a sweep over ψ), or 2 and 3 materials from
+    88 and 96 separations evaluated."""
+    lv = surface.l_from_s(s_arr)
+    lo, hi = float(lv.min()), float(lv.max())
+    cached = np.array([_cached_table((surface, hertz, accuracy, m), lo, hi) is not None for m in materials])
+    missing = list(dict.fromkeys(m for m, c in zip(materials, cached) if not c))
+    if missing:
+        n_s = int(np.unique(s_arr).size)
+        if _tau_cost(n_s, len(missing), interpolate_s) >= _build_cost(len(missing), accuracy):
+            return np.ones(len(materials), dtype=bool)
+    return cached
 
 
 #: the column groups whose sum is each production column's total (s_interpolation's
@@ -356,7 +461,7 @@ def elastoplastic_contact(
     validity: str = "refuse",
     interpolate_s: bool = True,
     s_rtol: float | None = None,
-    route: str = "tau",
+    route: str = "auto",
 ) -> ElastoPlasticCurves:
     """Elasto-plastic contact per unit nominal area at separations ``s`` = h/√m00 (23).
 
@@ -370,16 +475,31 @@ def elastoplastic_contact(
     method    "production" (numba) or "reference" (the scipy slow twin; seconds per point).
     validity  "refuse" | "warn" | "off": outside the model's range (contact.validity): warnings
               for s < 0 or A/A0 > 0.1, ValueError for A/A0 > 1 unless "warn".
-    interpolate_s  with ≥ 48 distinct separations, build the curve from a verified Chebyshev
-              interpolant in s (contact.s_interpolation: the interpolant agrees with direct
-              evaluation between its nodes to ``s_rtol``; falls back to every point when no
-              grid with fewer nodes than points verifies). Production only.
+    interpolate_s  with ≥ 48 distinct separations, build the τ-route curve from a verified
+              Chebyshev interpolant in s (contact.s_interpolation: the interpolant agrees with
+              direct evaluation between its nodes to ``s_rtol``; falls back to every point when
+              no grid with fewer nodes than points verifies). Production τ route only (the
+              table route evaluates every separation directly).
     s_rtol    tolerance of that check; default a tenth of the preset's stated bound
               (S_RTOL), so that the curve stays within the preset's bound.
-    route     production route (ROUTES): "tau" (per separation) or "table" (one summit table
-              per material, cached; every separation a quadrature over it, no s-interpolation;
-              SHARED_MIN or more new materials of a call are built together by one shared
-              build, summit_table.build_tables: what a sweep over ψ at fixed moments needs).
+    route     production route (ROUTES):
+              "tau"   per separation (the τ = r t kernel; 1.4–1.8 ms per separation at "plot");
+              "table" one summit table per material (integrals.summit_table), cached in-process
+                      (least recently used out beyond TABLE_CACHE_BYTES = 64 MiB; clear_table_cache);
+                      every separation a quadrature over it (~40 µs), no s-interpolation; the
+                      build costs ~70 τ separations ("plot"; ~100 ms); SHARED_MIN or more new
+                      materials of a call are built together by one shared build
+                      (summit_table.build_tables: a sweep over ψ at fixed moments);
+              "auto"  (default) per material: "table" when its table is cached and covers the
+                      separations; the materials without one take "table" when the call's
+                      τ-route cost (distinct separations — 33 for an s-interpolated curve of ≥ 48 —
+                      times ≈ 0.4 + 0.6 k for k materials) reaches the cold build's (70 τ
+                      separations per material at "plot", 80 at "table"; the shared build
+                      ≈ 2.5 + 0.06 k builds), else "tau". A single separation or one curve of one
+                      material stays on "tau" (no build); a sweep's surface with ≥ 11 materials
+                      takes "table". Both routes are within the preset's bound ("plot" 1e-8,
+                      "table" 1e-11) of the references, so the route changes a value by at most
+                      twice the bound; the curves record the route taken (``route``).
 
     Returns :class:`ElastoPlasticCurves`: A/A0, W/A0 (unit of E*), K/A0 = −d(W/A0)/dh (unit of
     E* per L) and the elastic / elasto-plastic / plastic parts of area and load.
@@ -390,12 +510,14 @@ def elastoplastic_contact(
 
 def elastoplastic_contact_many(surface: SpectralMoments, s, materials, *, hertz: str = "exact", accuracy="table",
                                method: str = "production", validity: str = "refuse", interpolate_s: bool = True,
-                               s_rtol: float | None = None, route: str = "tau") -> list[ElastoPlasticCurves]:
+                               s_rtol: float | None = None, route: str = "auto") -> list[ElastoPlasticCurves]:
     """:func:`elastoplastic_contact` for several materials on one surface (same arguments;
     ``materials`` a sequence of AsperityMaterial): one :class:`ElastoPlasticCurves` each, the
-    same numbers as one call per material. Faster: the summit measure's hyperbola integrals
-    depend on the surface and the separation only, and are computed once for all materials
-    (what a sweep over ψ or Y at fixed moments needs)."""
+    same numbers as one call per material on the same route. Faster: the summit measure's
+    hyperbola integrals (τ route) depend on the surface and the separation only, and are
+    computed once for all materials; the table route builds new materials' tables together
+    (what a sweep over ψ or Y at fixed moments needs). With route="auto" the rule is applied
+    to the call as a whole (its materials without a cached table all take the same route)."""
     materials = list(materials)
     if not materials:
         raise ValueError("give at least one material")
@@ -404,30 +526,44 @@ def elastoplastic_contact_many(surface: SpectralMoments, s, materials, *, hertz:
         instance("material", m, AsperityMaterial)
     choice("validity", validity, VALIDITY_MODES)
     check_bandwidth(surface.mu, method)
-    how = [None] * len(materials)
     choice("route", route, ROUTES)
-    if method == "production" and route == "table":
-        elastoplastic_settings_for(accuracy)  # validates the preset name
-        cols = _table_many(surface, surface.l_from_s(s_arr), materials, hertz, accuracy)
-        how = [SInterpolation("direct", s_arr.size, 0, math.nan, _s_rtol(accuracy, s_rtol))] * len(materials)
-    elif method == "production":
+    n = len(materials)
+    how = [None] * n
+    taken = [None] * n
+    if method == "production":
         elastoplastic_settings_for(accuracy)  # validates the preset name
         rtol = _s_rtol(accuracy, s_rtol)
-
-        def evaluate(x, which):
-            return _production_many(surface, surface.l_from_s(x), [materials[k] for k in which], hertz, accuracy)
-        if interpolate_s:
-            cols, how = interpolated_columns_many(evaluate, s_arr, len(materials), rtol, _COLUMN_TOTALS)
+        if route == "auto":
+            use_table = _auto_tables(surface, s_arr, materials, hertz, accuracy, interpolate_s)
         else:
-            cols = evaluate(s_arr, np.arange(len(materials)))
-            how = [SInterpolation("direct", s_arr.size, 0, math.nan, rtol)] * len(materials)
+            use_table = np.full(n, route == "table")
+        cols = np.empty((s_arr.size, n, 8))
+        on_table, on_tau = np.flatnonzero(use_table), np.flatnonzero(~use_table)
+        if on_table.size:
+            cols[:, on_table] = _table_many(surface, surface.l_from_s(s_arr), [materials[k] for k in on_table],
+                                            hertz, accuracy)
+            for k in on_table:
+                how[k], taken[k] = SInterpolation("direct", s_arr.size, 0, math.nan, rtol), "table"
+        if on_tau.size:
+            sub = [materials[k] for k in on_tau]
+
+            def evaluate(x, which):
+                return _production_many(surface, surface.l_from_s(x), [sub[k] for k in which], hertz, accuracy)
+            if interpolate_s:
+                c, h = interpolated_columns_many(evaluate, s_arr, len(sub), rtol, _COLUMN_TOTALS)
+            else:
+                c = evaluate(s_arr, np.arange(len(sub)))
+                h = [SInterpolation("direct", s_arr.size, 0, math.nan, rtol)] * len(sub)
+            cols[:, on_tau] = c
+            for j, k in enumerate(on_tau):
+                how[k], taken[k] = h[j], "tau"
     else:
         cols = np.array([[reference_integrals(surface, float(x), m, hertz=hertz) for m in materials] for x in s_arr])
-    return [_curves(surface, s_arr, cols[:, k], materials[k], hertz, method, validity, how[k])
-            for k in range(len(materials))]
+    return [_curves(surface, s_arr, cols[:, k], materials[k], hertz, method, validity, how[k], taken[k])
+            for k in range(n)]
 
 
-def _curves(surface, s_arr, cols, material, hertz, method, validity, how) -> ElastoPlasticCurves:
+def _curves(surface, s_arr, cols, material, hertz, method, validity, how, route) -> ElastoPlasticCurves:
     Ae, Aep, Ap, We, Wep, Wp, K, Kj = (np.asarray(cols[:, q], dtype=float) for q in range(8))
     check_validity(s_arr, Ae + Aep + Ap, mode=validity)
     return ElastoPlasticCurves(
@@ -448,4 +584,5 @@ def _curves(surface, s_arr, cols, material, hertz, method, validity, how) -> Ela
         surface=surface,
         psi=plasticity_index(surface, material),
         interpolation=how,
+        route=route,
     )

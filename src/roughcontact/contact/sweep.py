@@ -82,12 +82,15 @@ class SweepSpec:
              direct values; worth it for dense axes over narrow ranges.
     units    {"length": ..., "stress": ...} of the inputs, UDUNITS strings (stored as the variables' units;
              None: the dimensional variables get no units attribute).
-    route    production route of contact.elastoplastic (ROUTES): "tau" (per separation, default)
-             or "table" (one summit table per (surface, material), integrals.summit_table;
-             every separation a quadrature over it, no s-interpolation needed; the materials
-             of one surface — every ψ, Y, E*, … of the grid at fixed moments — come from one
-             shared build, summit_table.build_tables, so a sweep costs about one build per
-             surface: benchmarks/ep_cost.py).
+    route    production route of contact.elastoplastic (ROUTES): "auto" (default), "tau" or
+             "table". "auto" applies elastoplastic_contact's rule per surface (the materials of
+             one surface — every ψ, Y, E*, … of the grid at fixed moments — are one call): a
+             surface whose τ-route cost reaches the table build (measured break-even: ≥ 11
+             materials of an s-interpolated curve at "plot") takes the table route, with one
+             shared build per surface (summit_table.build_tables; a 10⁶-point sweep 49 s at load
+             4.7–4.9 on 2 cores: benchmarks/ep_cost.py); fewer, or a cached table, as that rule says. "tau":
+             per separation; "table": always the summit tables. The route each curve took is
+             in the Dataset's attribute ``route_used`` ("tau", "table" or "mixed").
     """
 
     axes: Mapping[str, Sequence[float]]
@@ -101,7 +104,7 @@ class SweepSpec:
     interpolate_s: bool = True
     interpolate_axes: Sequence[str] = ()
     units: Mapping[str, str] | None = None
-    route: str = "tau"
+    route: str = "auto"
 
     def __post_init__(self) -> None:
         axes = {str(k): np.atleast_1d(np.asarray(v, dtype=float)) for k, v in dict(self.axes).items()}
@@ -128,7 +131,9 @@ class SweepSpec:
         elif self.closure not in CLOSURES:
             raise ValueError(f"closure must be one of {', '.join(CLOSURES)}; got {describe(self.closure)}")
         choice("validity", self.validity, VALIDITY_MODES)
-        choice("route", self.route, ("tau", "table"))
+        from .elastoplastic import ROUTES
+
+        choice("route", self.route, ROUTES)
         for name in self.interpolate_axes:
             choice("interpolate_axes", name, INTERPOLABLE)
         object.__setattr__(self, "interpolate_axes", tuple(self.interpolate_axes))
@@ -217,7 +222,7 @@ def _direct_block(spec: SweepSpec, counter: _Progress):
 
     jobs = _validate(spec)
     out = np.empty(spec.shape + (len(ElastoPlasticCurves.FIELDS),))
-    records = {"s": [], "m00": [], "psi": []}
+    records = {"s": [], "m00": [], "psi": [], "route": []}
     by_surface: dict = {}
     for idx, surface, material in jobs:
         by_surface.setdefault(surface, []).append((idx, material))
@@ -228,6 +233,7 @@ def _direct_block(spec: SweepSpec, counter: _Progress):
         for (idx, _), ep in zip(members, curves):
             out[idx] = np.stack([getattr(ep, f) for f in ElastoPlasticCurves.FIELDS], axis=-1)
             records["s"].append(ep.interpolation.as_attrs())
+            records["route"].append(ep.route)
         counter.add(len(members))
     return out, records
 
@@ -240,7 +246,7 @@ def _interpolated_block(spec: SweepSpec, axis: str, counter: _Progress):
 
     pos = list(spec.axes).index(axis)
     n_fields = len(ElastoPlasticCurves.FIELDS)
-    records = {"s": [], "m00": [], "psi": []}
+    records = {"s": [], "m00": [], "psi": [], "route": []}
     rest = None
     values = spec.axes[axis]
     exact = dict(zip(np.log(values).tolist(), values.tolist()))  # exp(ln v) need not be v
@@ -343,11 +349,18 @@ def run_sweep(spec: SweepSpec, progress: Callable[[int, int], None] | None = Non
         hertz=spec.hertz,
         accuracy=spec.accuracy,
         route=spec.route,
+        route_used=_route_used(records["route"]),
         **{f"fixed_{k}": v for k, v in spec.fixed.items()},
         **_interpolation_attrs(records["s"]),
         **{k: v for axis in INTERPOLABLE if records[axis] for k, v in _axis_attrs(axis, records[axis]).items()},
     )
     return ds
+
+
+def _route_used(routes) -> str:
+    """"tau" or "table" if every curve took that route, else "mixed"."""
+    used = set(routes)
+    return used.pop() if len(used) == 1 else "mixed"
 
 
 def _interpolation_attrs(records) -> dict:
@@ -384,6 +397,8 @@ def combine(pieces: Sequence, axis: str):
                    combine_attrs="override")
     if all("s_interpolation" in p.attrs for p in pieces):  # the whole sweep's, not the first piece's
         ds.attrs.update(_interpolation_attrs([p.attrs for p in pieces]))
+    if all("route_used" in p.attrs for p in pieces):
+        ds.attrs["route_used"] = _route_used(p.attrs["route_used"] for p in pieces)
     for name in INTERPOLABLE:
         with_axis = [p.attrs for p in pieces if f"{name}_interpolation" in p.attrs]
         if with_axis:
@@ -444,6 +459,6 @@ def spec_from_config(cfg: Mapping, units: Mapping[str, str] | None = None) -> Sw
         with_elastic=bool(cfg.get("with_elastic", True)),
         interpolate_s=bool(cfg.get("interpolate_s", True)),
         interpolate_axes=tuple(cfg.get("interpolate_axes", ())),
-        route=cfg.get("route", "tau"),
+        route=cfg.get("route", "auto"),
         **({"units": dict(units)} if units else {}),
     )

@@ -34,8 +34,15 @@ factorisation against a timed GMRES iteration (:class:`ReusedFactor`). The cost 
 factorisation per change of the active set or of the law's stiffness large enough to matter,
 plus one multiply by A_k and two triangular solves per GMRES iteration.
 
-The sparse factorisation (:class:`Sparse`) is Intel MKL PARDISO through the optional package
-pypardiso when it is installed, else scipy's SuperLU in a nested-dissection order.
+The sparse factorisation (:class:`Sparse`) is Intel MKL PARDISO (the optional extra
+``[pardiso]``, called through :mod:`.pardiso`) when it is installed, else scipy's SuperLU in a
+nested-dissection order. The kept PARDISO factor is single precision by default: each GMRES
+iteration's triangular solves are memory-bound, and a float32 factor halves their traffic
+(and the factor's memory); GMRES, which stores its preconditioned vectors (flexible GMRES,
+Saad 1993, SIAM J. Sci. Comput. 14), takes the answer to the same double-precision residual
+even right after a factorisation (:class:`ReusedFactor` ``approximate``). A single-precision
+factor whose GMRES does not converge within APPROXIMATE_MAX iterations (a nearly singular
+tangent, where float32 loses the solution) is replaced by a double-precision one.
 """
 
 from __future__ import annotations
@@ -43,7 +50,6 @@ from __future__ import annotations
 import math
 import time
 import warnings
-import weakref
 from dataclasses import dataclass
 from typing import Callable
 
@@ -52,12 +58,12 @@ import scipy.linalg as la
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from . import ordering
+from . import ordering, pardiso
 from .interface_points import InterfacePoints, interface_tangent
 
-__all__ = ["KRYLOV_RTOL", "REFACTOR_AFTER", "MAX_KRYLOV", "MAX_KRYLOV_CAP", "RESTARTS", "DIRECT_RESIDUAL",
-           "KrylovStats", "ReusedFactor", "gmres_right", "Sparse", "SPARSE_BACKENDS", "pardiso_available",
-           "Condensed"]
+__all__ = ["KRYLOV_RTOL", "REFACTOR_AFTER", "MAX_KRYLOV", "MAX_KRYLOV_CAP", "APPROXIMATE_MAX", "ROUNDOFF_RESIDUAL",
+           "ROUNDOFF_CAP", "RESTARTS", "DIRECT_RESIDUAL", "KrylovStats", "ReusedFactor", "gmres_right", "Sparse",
+           "SPARSE_BACKENDS", "PRECISIONS", "pardiso_available", "Condensed"]
 
 #: accepted relative true residual ‖b − A x‖/‖b‖ of a Krylov solve (module docstring)
 KRYLOV_RTOL = 1e-12
@@ -73,12 +79,21 @@ MAX_KRYLOV_CAP = 300
 #: a direct sparse solve with ‖r − K_t du‖ above this fraction of ‖r‖ is a singular tangent
 #: (PARDISO perturbs tiny pivots rather than failing; SuperLU raises on a zero pivot)
 DIRECT_RESIDUAL = 1e-6
+#: GMRES iterations with a fresh approximate (single-precision) factor before it is replaced by an
+#: exact one (ReusedFactor): 3-8 were needed on the plate on a base, where the float32 factor's own
+#: residual is 1e-7 .. 1e-2 (the first, nearly singular tangent); a guard, never reached there
+APPROXIMATE_MAX = 30
+#: a residual within this many ε ‖|A| |x|‖ is at the round-off floor of b − A x (gmres_right): the
+#: best a refined direct solve reached on the plate on a base was 0.36 of it
+ROUNDOFF_RESIDUAL = 4.0
+#: ... but never a relative residual above this (gmres_right)
+ROUNDOFF_CAP = 1e-8
 #: restarts of GMRES on the recomputed residual when round-off kept it from the target (gmres_right)
 RESTARTS = 2
 
 
 def gmres_right(matvec: Callable, precondition: Callable, b: np.ndarray, rtol: float,
-                max_iterations: int) -> tuple[np.ndarray | None, int]:
+                max_iterations: int, abs_matvec: Callable | None = None) -> tuple[np.ndarray | None, int]:
     """Right-preconditioned GMRES from x₀ = 0 (Saad 2003, alg. 9.5; classical Gram–Schmidt
     applied twice, "twice is enough": Giraud et al., Numer. Math. 101, 2005; Givens rotations):
     (x, iterations) with ‖b − A x‖₂ ≤ rtol ‖b‖₂ on the recomputed residual, or (None,
@@ -86,7 +101,15 @@ def gmres_right(matvec: Callable, precondition: Callable, b: np.ndarray, rtol: f
     ``precondition(v)`` = P⁻¹ v. When the Arnoldi estimate meets the target but the recomputed
     residual does not (round-off in the long recurrence), GMRES restarts on the recomputed
     residual with the iterations left, at most RESTARTS times: iterative refinement
-    (Higham, *Accuracy and Stability of Numerical Algorithms*, 2nd ed. 2002, ch. 12)."""
+    (Higham, *Accuracy and Stability of Numerical Algorithms*, 2nd ed. 2002, ch. 12).
+
+    ``abs_matvec(v)`` = |A| v, if given, also accepts x whose residual is at the round-off floor
+    of its own computation, ‖b − A x‖₂ ≤ ROUNDOFF_RESIDUAL · ε · ‖|A| |x|‖₂: a backward-stable
+    direct solve reaches no better (its componentwise backward error is O(ε), Higham ch. 7;
+    measured on the plate on a base's first, nearly singular tangent: the best residual of a
+    refined double-precision solve is 0.36 ε ‖|A| |x|‖, 1.6e-11 of ‖b‖), so rtol below that
+    floor is unattainable and GMRES would only stagnate. Never beyond ROUNDOFF_CAP ‖b‖: a floor
+    that high means a huge x, a singular A (PARDISO perturbs its pivots), not an answer."""
     beta = float(np.linalg.norm(b))
     if beta == 0.0:
         return np.zeros_like(b), 0
@@ -101,11 +124,18 @@ def gmres_right(matvec: Callable, precondition: Callable, b: np.ndarray, rtol: f
         r = b - matvec(x)
         if not np.all(np.isfinite(x)):
             return None, used
-        if np.linalg.norm(r) <= target:
+        norm_r = np.linalg.norm(r)
+        if norm_r <= target or (abs_matvec is not None and norm_r <= min(ROUNDOFF_CAP * beta,
+                                                                          _roundoff_floor(abs_matvec, x))):
             return x, used
         if not met or used >= max_iterations:  # the iterations ran out
             return None, used
     return None, used
+
+
+def _roundoff_floor(abs_matvec: Callable, x: np.ndarray) -> float:
+    """ROUNDOFF_RESIDUAL · ε · ‖|A| |x|‖₂ (:func:`gmres_right`)."""
+    return ROUNDOFF_RESIDUAL * np.finfo(float).eps * float(np.linalg.norm(abs_matvec(np.abs(x))))
 
 
 def _gmres_cycle(matvec, precondition, b, target, max_iterations):
@@ -151,13 +181,15 @@ def _gmres_cycle(matvec, precondition, b, target, max_iterations):
 @dataclass
 class KrylovStats:
     """What a :class:`ReusedFactor` did: factorisations, direct solves (right after a
-    factorisation), Krylov solves accepted and their GMRES iterations, Krylov solves given up."""
+    factorisation), Krylov solves accepted and their GMRES iterations, Krylov solves given up,
+    approximate factors that did not converge GMRES and were replaced by an exact one."""
 
     factorisations: int = 0
     direct_solves: int = 0
     krylov_solves: int = 0
     krylov_iterations: int = 0
     krylov_failures: int = 0
+    exact_fallbacks: int = 0
 
 
 class ReusedFactor:
@@ -182,20 +214,28 @@ class ReusedFactor:
     the direct strategy's answer."""
 
     def __init__(self, rtol: float = KRYLOV_RTOL, refactor_after: int | None = None,
-                 max_iterations: int | None = None):
+                 max_iterations: int | None = None, approximate: bool = False):
         self.rtol, self.fixed_refactor, self.fixed_max = rtol, refactor_after, max_iterations
         self.refactor_after = REFACTOR_AFTER if refactor_after is None else refactor_after
         self.max_iterations = MAX_KRYLOV if max_iterations is None else max_iterations
+        self.approximate = approximate
         self.factor: Callable | None = None
         self.stale = False
         self.floor = 0.0  # ρ_f
         self.stats = KrylovStats()
 
-    def solve(self, matvec: Callable, b: np.ndarray, factorise: Callable[[], Callable]) -> np.ndarray:
+    def solve(self, matvec: Callable, b: np.ndarray, factorise: Callable[..., Callable],
+              abs_matvec: Callable | None = None) -> np.ndarray:
         """``matvec(v)`` = A v of the current A; ``factorise()`` factors the current A and returns
-        its solve (v ↦ A⁻¹ v); it may raise (a singular A) as the direct strategies do."""
+        its solve (v ↦ A⁻¹ v); it may raise (a singular A) as the direct strategies do. With
+        ``approximate``, ``factorise(True)`` returns an approximate solve (a single-precision
+        factor, :mod:`.pardiso`): GMRES preconditioned by it solves even right after the
+        factorisation, to the full ``rtol``; when it does not within APPROXIMATE_MAX iterations
+        (a nearly singular tangent: single precision loses it), ``factorise()`` factors exactly and
+        the direct path below takes over for this factor. ``abs_matvec(v)`` = |A| v lets GMRES
+        accept a residual at its round-off floor (:func:`gmres_right`)."""
         if self.factor is not None and not self.stale:
-            x, its = gmres_right(matvec, self.factor, b, max(self.rtol, self.floor), self.max_iterations)
+            x, its = gmres_right(matvec, self.factor, b, max(self.rtol, self.floor), self.max_iterations, abs_matvec)
             if x is not None:
                 self.stats.krylov_solves += 1
                 self.stats.krylov_iterations += its
@@ -203,6 +243,20 @@ class ReusedFactor:
                 return x
             self.stats.krylov_failures += 1
         self.factor = None  # free the old factor before the new one is made (peak memory)
+        if self.approximate:
+            t0 = time.perf_counter()
+            self.factor = factorise(True)
+            t1 = time.perf_counter()
+            x, its = gmres_right(matvec, self.factor, b, self.rtol, APPROXIMATE_MAX, abs_matvec)
+            self.stats.factorisations += 1
+            if x is not None:
+                self.stats.krylov_solves += 1
+                self.stats.krylov_iterations += its
+                self._budget(t1 - t0, (time.perf_counter() - t1) / max(its, 1), 0.0)
+                return x
+            self.stats.krylov_failures += 1
+            self.stats.exact_fallbacks += 1
+            self.factor = None
         t0 = time.perf_counter()
         self.factor = factorise()
         t1 = time.perf_counter()
@@ -211,16 +265,19 @@ class ReusedFactor:
         r = b - matvec(x)
         t3 = time.perf_counter()
         norm_b = float(np.linalg.norm(b))
-        self.floor = float(np.linalg.norm(r)) / norm_b if norm_b > 0.0 and np.all(np.isfinite(r)) else 0.0
-        self.stale = False
         self.stats.factorisations += 1
         self.stats.direct_solves += 1
+        self._budget(t1 - t0, (t2 - t1) + (t3 - t2),
+                     float(np.linalg.norm(r)) / norm_b if norm_b > 0.0 and np.all(np.isfinite(r)) else 0.0)
+        return x
+
+    def _budget(self, t_factor: float, t_iteration: float, floor: float) -> None:
+        """A new factor: its accepted residual floor ρ_f and the iteration budget (class docstring)."""
+        self.floor, self.stale = floor, False
         if self.fixed_max is None:
-            per_iteration = max((t2 - t1) + (t3 - t2), 1e-9)
-            self.max_iterations = int(min(max((t1 - t0) / per_iteration, MAX_KRYLOV), MAX_KRYLOV_CAP))
+            self.max_iterations = int(min(max(t_factor / max(t_iteration, 1e-9), MAX_KRYLOV), MAX_KRYLOV_CAP))
         if self.fixed_refactor is None:
             self.refactor_after = max(REFACTOR_AFTER, self.max_iterations // 2)
-        return x
 
 
 # ---------------------------------------------------------------------------------------------
@@ -262,44 +319,16 @@ def pardiso_available() -> bool:
     try:
         import pypardiso  # noqa: F401
 
-        return pypardiso.PyPardisoSolver is not None
+        return pypardiso.PyPardisoSolver is not None and pardiso.mkl_library() is not None
     except (ImportError, OSError):  # not installed, or its MKL library not found
         return False
-
-
-class _PardisoFactor:
-    """b ↦ A⁻¹ b by MKL PARDISO (pypardiso; Schenk & Gärtner, Future Gener. Comput. Syst. 20,
-    2004): METIS ordering, supernodal; Cholesky (mtype 2, the upper triangle) of a symmetric A
-    (a zero or negative pivot raises LinAlgError: singular or indefinite), LU with pivot
-    perturbation (mtype 11) of an unsymmetric one. The factor's memory is released with the
-    object."""
-
-    def __init__(self, A: sp.csc_matrix, symmetric: bool):
-        import pypardiso
-
-        self.solver = pypardiso.PyPardisoSolver(mtype=2 if symmetric else 11)
-        self.A = (sp.triu(A, format="csr") if symmetric else A.tocsr())
-        self.A.sort_indices()
-        weakref.finalize(self, _free_pardiso, self.solver)
-        try:
-            self.solver.factorize(self.A)
-        except pypardiso.pardiso_wrapper.PyPardisoError as exc:
-            raise np.linalg.LinAlgError(f"PARDISO: {exc}") from None
-
-    def __call__(self, b: np.ndarray) -> np.ndarray:
-        return self.solver.solve(self.A, b)
-
-
-def _free_pardiso(solver) -> None:
-    try:
-        solver.free_memory(everything=True)
-    except Exception:  # noqa: BLE001  (interpreter shutdown: MKL may be gone already)
-        pass
 
 
 #: the sparse factorisation of the "sparse" strategies: "pardiso" when pypardiso is importable
 #: (docs/performance.md, "Large contact interfaces (issue 31)"), else scipy's "superlu"
 SPARSE_BACKENDS = ("auto", "pardiso", "superlu")
+#: the precision of the kept PARDISO factor of the "sparse-krylov" strategy (Sparse)
+PRECISIONS = ("single", "double")
 
 
 class Sparse:
@@ -307,15 +336,22 @@ class Sparse:
     ordering), else SuperLU in a nested-dissection order (diagonal pivoting when the tangent is
     symmetric); with ``krylov`` its factor is kept and reused as the preconditioner of GMRES
     (:mod:`.linear_solvers`). A direct solve whose residual exceeds DIRECT_RESIDUAL of ‖r‖
-    (PARDISO perturbs tiny pivots instead of failing) raises LinAlgError: a singular tangent."""
+    (PARDISO perturbs tiny pivots instead of failing) raises LinAlgError: a singular tangent.
 
-    def __init__(self, model, krylov: bool = False, backend: str = "auto"):
+    ``precision`` of the kept PARDISO factor: "single" (default with ``krylov``: half the memory
+    and half the time of each of GMRES's triangular solves, which are memory-bound; GMRES makes
+    the answer that of the double-precision system, :class:`ReusedFactor` ``approximate``) or
+    "double". SuperLU and the direct strategy always factor in double precision."""
+
+    def __init__(self, model, krylov: bool = False, backend: str = "auto", precision: str = "single"):
         if backend not in SPARSE_BACKENDS:
             raise ValueError(f"backend must be one of {', '.join(SPARSE_BACKENDS)}, got {backend!r}")
+        if precision not in PRECISIONS:
+            raise ValueError(f"precision must be one of {', '.join(PRECISIONS)}, got {precision!r}")
         if backend == "auto":
             backend = "pardiso" if pardiso_available() else "superlu"
         self.backend = backend
-        self.reuse = ReusedFactor() if krylov else None
+        self.reuse = ReusedFactor(approximate=backend == "pardiso" and precision == "single") if krylov else None
         free = model.free
         K = model.stiffness[free][:, free].tocsr()
         self.order = _ordered(model, K, np.arange(free.size)) if backend == "superlu" else np.arange(free.size)
@@ -326,9 +362,9 @@ class Sparse:
         Kt = (self.K + interface_tangent(_restricted(points, self.B), D)).tocsc()
         symmetric = _symmetric(D)
 
-        def factorise():
+        def factorise(single: bool = False):
             if self.backend == "pardiso":
-                return _PardisoFactor(Kt, symmetric)
+                return pardiso.PardisoFactor(Kt, symmetric, single=single)
             return spla.splu(Kt, permc_spec="NATURAL", options=dict(SymmetricMode=symmetric),
                              **({"diag_pivot_thresh": 0.0} if symmetric else {})).solve
         du = np.empty(r.size)
@@ -338,7 +374,7 @@ class Sparse:
             if self.backend == "pardiso" and not np.linalg.norm(b - Kt @ x) <= DIRECT_RESIDUAL * np.linalg.norm(b):
                 raise np.linalg.LinAlgError("PARDISO: the solve missed the residual (a singular tangent)")
         else:
-            x = self.reuse.solve(Kt.__matmul__, b, factorise)
+            x = self.reuse.solve(Kt.__matmul__, b, factorise, lambda v: abs(Kt) @ v)
             if self.backend == "pardiso" and self.reuse.floor > DIRECT_RESIDUAL:
                 raise np.linalg.LinAlgError("PARDISO: the solve missed the residual (a singular tangent)")
         du[self.order] = x

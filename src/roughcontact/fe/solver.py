@@ -55,10 +55,11 @@ timed GMRES iteration: tens of iterations on small models, hundreds on large one
 factored as it is — LU — when it is refactored; the accepted residual ‖r − K_t du‖ ≤
 max(1e-12, ρ_f) ‖r‖ with ρ_f the direct solve's own residual after the last factorisation,
 below Newton's force tolerance, so the iterations and the answer are the direct solve's). The
-sparse factorisation is Intel MKL PARDISO when the optional package pypardiso is installed
-(Cholesky of a symmetric tangent, LU of an unsymmetric one; METIS ordering; a factor of the
-209 k-dof plate on a base in 53 CPU s and 3.9 GB against more than 240 CPU s and 8.5 GB with
-SuperLU), else SuperLU. ``"auto"`` (default) is "condensed-krylov" up to AUTO_CONDENSED_MAX = 3000
+sparse factorisation is Intel MKL PARDISO when the optional extra [pardiso] is installed
+(:mod:`.pardiso`; Cholesky of a symmetric tangent, LU of an unsymmetric one; METIS ordering; a
+factor of the 209 k-dof plate on a base in 53 CPU s and 3.9 GB against more than 240 CPU s and
+8.5 GB with SuperLU; the kept factor of "sparse-krylov" in single precision, 14 s and 1.3 GB,
+GMRES restoring the double-precision residual), else SuperLU. ``"auto"`` (default) is "condensed-krylov" up to AUTO_CONDENSED_MAX = 3000
 interface dofs and "sparse-krylov" beyond: condensing costs a dense S of 8 n_I² bytes and n_I³/3 per dense
 refactoring, the sparse strategy a factorisation of the whole sparse tangent per refactoring
 (docs/performance.md, "Large contact interfaces" and "Large contact interfaces (issue 31)": a

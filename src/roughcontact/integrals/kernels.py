@@ -1949,12 +1949,13 @@ def _sh_rho(i, y_values, g, h1, h3, h2, h2t, lnT, w_levels, n_levels, g_max, the
 
 
 @numba.njit(cache=True, parallel=True)
-def _sh_rho_array(y_values, g, h1, h3, h2, h2t, lnT, w_levels, n_levels, g_max, theta_tol, v_tol, xg, wg, lnb, lnR,
-                  sigma, E_star, cH, dp, pv, with_jump, out, info):
-    """_sh_rho at every y: threads over contiguous blocks of y (neighbours in a block start from
-    each other's v-panels: the Lobatto nodes of a y-panel are consecutive)."""
+def _sh_rho_array(n_blocks, y_values, g, h1, h3, h2, h2t, lnT, w_levels, n_levels, g_max, theta_tol, v_tol, xg, wg,
+                  lnb, lnR, sigma, E_star, cH, dp, pv, with_jump, out, info):
+    """_sh_rho at every y: threads over ``n_blocks`` contiguous blocks of y (neighbours in a block
+    start from each other's v-panels: the Lobatto nodes of a y-panel are consecutive). The caller
+    gives n_blocks (summit_table: min(n, 4 × threads)): numba's thread count read inside a kernel
+    is a dynamic global, which kept numba from caching it (~4.6 s of compilation per process)."""
     n = y_values.shape[0]
-    n_blocks = min(n, 4 * numba.get_num_threads())
     for b in numba.prange(n_blocks):
         layout = np.zeros(_SH_MAX_PANELS + 1)
         for i in range(b * n // n_blocks, (b + 1) * n // n_blocks):

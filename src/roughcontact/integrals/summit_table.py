@@ -56,6 +56,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+import numba
 import numpy as np
 
 from .kernels import _sh_rho_array, _st_columns, _st_rho_array
@@ -94,8 +95,15 @@ def table_settings_for(accuracy) -> TableSettings:
     """The table's rules for an elasto-plastic accuracy (preset name, ElastoPlasticSettings or
     QuadratureSettings): θ as the preset; the interpolation tolerance its θ-tolerance (a
     Chebyshev tail below the θ-rule's own noise cannot be asked for: a tenth of it forced
-    bisections to the limit); the r- and convolution rules finer (measured: r-rule 1e-11–1e-13,
-    convolution 2e-11 at "plot") ("plot": θ-tol 1e-9, "table": 1e-12)."""
+    bisections to the limit); the r-rule finer (measured: 1e-11–1e-13 at "plot") ("plot": θ-tol
+    1e-9, "table": 1e-12). The convolution: 14 Gauss–Legendre nodes on panels ≤ 2 wide at both
+    presets. Measured against the τ route at QuadratureSettings(6, 6, 6) (issue 33,
+    2026-11-28): the former "plot" rule, 10 nodes on panels ≤ 3, left 2.2e-8 on K at s = 6 of
+    the m04/m40 = 1e4 surface (1.2e-8 on A; 6.7e-9 at s = 3 against the mpmath elastic limit),
+    above the "plot" bound; 14 on ≤ 2 leaves ≤ 1.1e-12 there and on Table 1, Table 2, the
+    α1 = 4, α2 = 5 and the α = 2.2 surfaces for ψ = 0.05 … 50, s = −1 … 6
+    (tests/integrals/test_summit_table_references.py). The rule costs the warm separation
+    only (the table's ρ-nodes are the y-panels', not the convolution's)."""
     st = elastoplastic_settings_for(accuracy)
     tol = st.theta_tol if st.theta_tol > 0.0 else 1e-9
     fine = tol < 1e-10
@@ -106,8 +114,8 @@ def table_settings_for(accuracy) -> TableSettings:
         dr_max=0.8 if fine else 1.2,
         degree=24 if fine else 16,
         interp_tol=max(tol, 1e-14),
-        conv_nodes=14 if fine else 10,  # 10 on panels ≤ 3 wide: 2e-11 against 12 on ≤ 0.5 (Table 1, ψ = 1, 50)
-        conv_width=2.0 if fine else 3.0,
+        conv_nodes=14,  # both presets: 10 on panels ≤ 3 wide left 2.2e-8 at "plot" (m04/m40 = 1e4, s = 6)
+        conv_width=2.0,
     )
 
 
@@ -228,6 +236,11 @@ class SummitTable:
     interp_error: float
     theta_error: float
     evaluations: int
+
+    @property
+    def nbytes(self) -> int:
+        """Memory held by the table's arrays [bytes]."""
+        return int(self.y.nbytes + self.log_scale.nbytes + self.weights.nbytes)
 
     def covers(self, l_lo: float, l_hi: float) -> bool:
         return self.y_range[0] <= min(l_lo, 0.0) - Y_MARGIN and self.y_range[1] >= max(l_hi, 0.0) + Y_MARGIN
@@ -418,8 +431,9 @@ def build_tables(nodes, tc1s, sigma, constants, accuracy, l_lo: float, l_hi: flo
         y = np.ascontiguousarray(y, dtype=float)
         out = np.empty((y.size, n, 8))
         info = np.empty((y.size, 5))
-        _sh_rho_array(y, g, h1, h3, h2, h2t, lnT, weights, counts, g_max, st.theta_tol, v_tol, xg, wg, lnb, lnR,
-                      float(sigma), E_star, cHs, dps, pvs, jumps, out, info)
+        n_blocks = max(1, min(y.size, 4 * numba.get_num_threads()))  # as before; an argument: the kernel caches
+        _sh_rho_array(n_blocks, y, g, h1, h3, h2, h2t, lnT, weights, counts, g_max, st.theta_tol, v_tol, xg, wg, lnb,
+                      lnR, float(sigma), E_star, cHs, dps, pvs, jumps, out, info)
         evaluations[0] += int(info[:, 1].sum())
         theta_err[0] = max(theta_err[0], float(info[:, 0].max()))
         if not np.all(info[:, 2] <= v_tol):
