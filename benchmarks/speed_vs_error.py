@@ -13,7 +13,8 @@ at a heavy and a light load (ψ = 1 for the elasto-plastic model) — it times, 
   (route="tau", what the default route "auto" takes for a single separation without a cached
   table), and the summit-table route (route="table", what "auto" takes once the table is
   cached: rows "table route <preset> (warm)", family "production (table route)", the cold
-  call that builds the table in the row's note);
+  call that builds the table in the row's note; full mode only: in --quick the table kernels'
+  compilation would be most of their cost);
 * the paper's Gauss–Legendre product rule in (ω1, ω4, ω6), n = 50 as printed and other n
   (baselines.product_rule, truncation documented there);
 * scipy: a plain tplquad over the infinite ranges (once per quantity, full mode; cached) and,
@@ -156,8 +157,9 @@ def _run_point(model, point, methods, ref, repeat, rows):
         rows.append(row)
 
 
-def _batch_rows(model, point, surface, s, ref, rows):
-    """The production presets on 64 separations in one call (threads), per separation."""
+def _batch_rows(model, point, surface, s, ref, rows, quick=False):
+    """The production presets on 64 separations in one call (threads), per separation; for the
+    elasto-plastic model also the s-interpolated curve and (full mode) the table route."""
     svals = np.full(64, s)
     for name, acc in (("prod table (batch of 64)", "table"), ("prod plot (batch of 64)", "plot")):
         if model == "elastic":
@@ -175,7 +177,8 @@ def _batch_rows(model, point, surface, s, ref, rows):
         rows.append(row)
     if model == "elastoplastic":
         _curve_row(point, surface, s, ref, rows)
-        _table_route_rows(point, surface, s, ref, rows)
+        if not quick:  # make reproduce's quick form: the table kernels' compilation (~4 s) spared
+            _table_route_rows(point, surface, s, ref, rows)
 
 
 def _table_route_rows(point, surface, s, ref, rows, repeat=7):
@@ -326,7 +329,7 @@ def main(argv=None) -> int:
         ref = refs.elastoplastic(cache, surface, s, PSI)[:3]
         point = f"{sname} s={s}"
         _run_point("elastoplastic", point, _ep_methods(surface, s, quick), ref, repeat, rows)
-        _batch_rows("elastoplastic", point, surface, s, ref, rows)
+        _batch_rows("elastoplastic", point, surface, s, ref, rows, quick)
         print(f"[{time.perf_counter() - t_start:7.1f} s] elastoplastic {point}", flush=True)
     _tplquad_rows(TPLQUAD_CACHE, cache, quick, rows)
 
